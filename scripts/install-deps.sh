@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Install the Debian packages certcyl needs. Idempotent: packages already present are skipped.
+#   scripts/install-deps.sh            library, command and tests
+#   scripts/install-deps.sh --study    also the peer libraries and plotting (experiments)
+#   scripts/install-deps.sh --paper    also LaTeX (the paper)
+set -euo pipefail
+
+packages=(
+  build-essential cmake ccache pkg-config
+  libcgal-dev libgmp-dev libmpfr-dev libmpfi-dev libeigen3-dev
+  libboost-test-dev nlohmann-json3-dev libcli11-dev libbenchmark-dev
+)
+for arg in "$@"; do
+  case "$arg" in
+    --study) packages+=(libfcl-dev libbullet-dev libode-dev python3-matplotlib python3-numpy) ;;
+    --paper) packages+=(texlive-latex-recommended texlive-latex-extra texlive-science latexmk poppler-utils) ;;
+    *) echo "install-deps.sh: unknown option '$arg' (expected --study or --paper)" >&2; exit 2 ;;
+  esac
+done
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages already installed"
+  exit 0
+fi
+
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

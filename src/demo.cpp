@@ -1,0 +1,105 @@
+#include "demo.hpp"
+
+#include <functional>
+#include <iomanip>
+#include <string>
+#include <vector>
+
+#include "certcyl/certcyl.hpp"
+
+namespace certcyl::cli {
+namespace {
+
+// The number types of the demo's columns.
+std::vector<NumberTypeSpec> demo_types() {
+  return {{NumberKind::double_, 53},     {NumberKind::long_double, 64}, {NumberKind::interval, 53},
+          {NumberKind::gmpfr, 24},       {NumberKind::gmpfr, 256},      {NumberKind::gmpq, 53},
+          {NumberKind::mpzf, 53},        {NumberKind::lazy_gmpq, 53},   {NumberKind::core_expr, 53}};
+}
+
+// One demo row: a query on exact input, answered by `answer` in a given number type.
+struct DemoCase {
+  std::string query;
+  std::string input;
+  std::function<std::string(const NumberTypeSpec&)> answer;
+};
+
+// Runs a generic query body in the number type `spec`, turning the honest refusals into
+// text: an interval that cannot decide, an input the type cannot hold.
+template <class Body>
+std::string answer_in(const NumberTypeSpec& spec, Body body) {
+  try {
+    return dispatch(spec, body);
+  } catch (const CGAL::Uncertain_conversion_exception&) {
+    return "undecided";
+  } catch (const InvalidInput&) {
+    return "n/a";  // e.g. Mpzf cannot hold a non-dyadic input
+  }
+}
+
+DemoCase point_case(std::string input, Cylinder<Rational> cyl, Point3<Rational> x) {
+  return {"point_in_cylinder", std::move(input), [cyl, x](const NumberTypeSpec& spec) {
+            return answer_in(spec, [&]<class NT>() -> std::string {
+              return to_string(classify_point(convert<NT>(x), convert<NT>(cyl)));
+            });
+          }};
+}
+
+DemoCase point_elliptic_case(std::string input, EllipticCylinder<Rational> e, Point3<Rational> x) {
+  return {"point_in_elliptic_cylinder", std::move(input), [e, x](const NumberTypeSpec& spec) {
+            return answer_in(spec, [&]<class NT>() -> std::string {
+              return to_string(classify_point(convert<NT>(x), convert<NT>(e)));
+            });
+          }};
+}
+
+std::vector<DemoCase> demo_cases() {
+  const Rational third = parse_rational("1/3"), tenth = parse_rational("0.1");
+  // Unit-radius cylinder around the z axis, z in [0, 1].
+  const Cylinder<Rational> unit{{0, 0, 0}, {0, 0, 1}, 1};
+  // The same cylinder with radius 1/10 and its seeds' center/axis form.
+  const Cylinder<Rational> thin = Cylinder<Rational>::from_center_axis({0, 0, 0}, {0, 0, 1}, tenth, 2);
+  // An oblique elliptic cylinder: semi-axes 2 and 1, sheared height vector.
+  const EllipticCylinder<Rational> oblique{{0, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 0, 1}};
+  return {
+      point_case("(0.6, 0.8, 0.5) on the wall of r=1", unit, {parse_rational("0.6"), parse_rational("0.8"), parse_rational("1/2")}),
+      point_case("(1/3, 1/3, 1/3) inside r=1", unit, {third, third, third}),
+      point_case("(0.1, 0, 0) on the wall of r=0.1", thin, {tenth, 0, 0}),
+      point_case("(0, 0, 1+2^-30) just above a cap, r=1", unit, {0, 0, Rational(1) + parse_rational("0x1p-30")}),
+      point_elliptic_case("(3, 0, 1) on the top rim, oblique", oblique, {3, 0, 1}),
+      point_elliptic_case("(1, 1/2, 1/2) inside, oblique", oblique, {1, parse_rational("1/2"), parse_rational("1/2")}),
+  };
+}
+
+}  // namespace
+
+int run_demo(std::ostream& out) {
+  const auto types = demo_types();
+  const auto cases = demo_cases();
+  out << "certcyl demo: each query on exact input, answered in every number type.\n"
+         "undecided = an interval could not decide; n/a = the type cannot hold the input.\n\n";
+  const int query_w = 28, input_w = 40, col_w = 13;
+  out << std::left << std::setw(query_w) << "query" << std::setw(input_w) << "input";
+  for (const auto& t : types) out << std::setw(col_w) << t.name();
+  out << "\n";
+  int status = 0;
+  for (const auto& c : cases) {
+    out << std::setw(query_w) << c.query << std::setw(input_w) << c.input;
+    std::string exact_answer;
+    for (const auto& t : types) {
+      const std::string a = c.answer(t);
+      out << std::setw(col_w) << a;
+      const bool exact = t.kind == NumberKind::gmpq || t.kind == NumberKind::mpzf || t.kind == NumberKind::lazy_gmpq ||
+                         t.kind == NumberKind::core_expr;
+      if (exact && a != "n/a") {
+        if (!exact_answer.empty() && a != exact_answer) status = 1;
+        exact_answer = a;
+      }
+    }
+    out << "\n";
+  }
+  if (status != 0) out << "\nerror: exact number types disagree\n";
+  return status;
+}
+
+}  // namespace certcyl::cli
