@@ -10,3 +10,4 @@
 #include "certcyl/rational.hpp"
 #include "certcyl/vec3.hpp"
 #include "certcyl/dispatch.hpp"
+#include "certcyl/filtered.hpp"
