@@ -11,6 +11,7 @@
 #pragma once
 
 #include <optional>
+#include <ostream>
 #include <string>
 #include <string_view>
 
@@ -36,5 +37,7 @@ inline std::optional<Answer> answer_from_string(std::string_view s) {
 
 // The seeds' boolean: do the sets share a point?
 inline constexpr bool intersects(Answer a) { return a == Answer::touching || a == Answer::overlapping; }
+
+inline std::ostream& operator<<(std::ostream& os, Answer a) { return os << to_string(a); }
 
 }  // namespace certcyl

@@ -11,6 +11,8 @@
 // merely approximate for floating types.
 #pragma once
 
+#include <ostream>
+
 #include "certcyl/number_traits.hpp"
 #include "certcyl/primitives.hpp"
 
@@ -53,5 +55,7 @@ Side classify_point(const Point3<NT>& x, const EllipticCylinder<NT>& e) {
   const NT z = det * u3;  // det^2 * (axial coordinate)
   return detail::combine_slacks(nt::sign(z), nt::sign(NT(det2 - z)), nt::sign(NT(det2 - (u1 * u1 + u2 * u2))));
 }
+
+inline std::ostream& operator<<(std::ostream& os, Side s) { return os << to_string(s); }
 
 }  // namespace certcyl
