@@ -1,0 +1,52 @@
+// Shared pieces of the query handlers: exact values as JSON, the common answer fields, and
+// running a generic method in the number type of --nt.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+#include "certcyl/answer.hpp"
+#include "certcyl/dispatch.hpp"
+#include "certcyl/filtered.hpp"
+#include "certcyl/rational.hpp"
+#include "certcyl/vec3.hpp"
+#include "query.hpp"
+
+namespace certcyl::cli {
+
+inline ojson exact_json(const Rational& q) { return to_exact_string(q); }
+
+inline ojson exact_json(const Vec3<Rational>& v) { return ojson::array({exact_json(v.x), exact_json(v.y), exact_json(v.z)}); }
+
+// The fields every answer carries.
+inline ojson answer_json(Answer a, bool certified, const std::string& method, const std::string& nt) {
+  return ojson{{"answer", std::string(to_string(a))}, {"certified", certified}, {"method", method}, {"nt", nt}};
+}
+
+// Runs body.template operator()<NT>() -> Answer in the number type of --nt. A certified type
+// that cannot decide (an interval) gives "undecided"; a type that cannot hold the input
+// (Mpzf and a non-dyadic value) is an error for that line. When the type rounds and some input
+// was not a binary64 value, the answer says so ("input_rounded": true).
+template <class Body>
+ojson run_in_number_type(const QueryOptions& options, bool input_all_binary64, Body body) {
+  const NumberTypeSpec& spec = options.nt;
+  Answer a = Answer::undecided;
+  bool certified = false;
+  dispatch(spec, [&]<class NT>() {
+    certified = NumberTraits<NT>::is_certified;
+    try {
+      a = body.template operator()<NT>();
+    } catch (const CGAL::Uncertain_conversion_exception&) {
+      a = Answer::undecided;
+    }
+    return 0;
+  });
+  ojson out = answer_json(a, certified && a != Answer::undecided, options.method, spec.name());
+  const bool rounds = spec.kind == NumberKind::double_ || spec.kind == NumberKind::long_double ||
+                      spec.kind == NumberKind::gmpfr;
+  if (rounds && !input_all_binary64) out["input_rounded"] = true;
+  return out;
+}
+
+}  // namespace certcyl::cli
