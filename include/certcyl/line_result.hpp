@@ -25,6 +25,7 @@
 #include <string_view>
 
 #include "certcyl/answer.hpp"
+#include "certcyl/number_traits.hpp"
 
 namespace certcyl {
 
@@ -66,5 +67,40 @@ struct LineInterval {
   Answer answer = Answer::separated;
   std::optional<LineEndpoint<T>> in, out;
 };
+
+// Restricts a line's interval to a ray (t >= 0) or a segment (t in [0, 1]), for the seeds'
+// methods, which answer for lines: a clipped end becomes origin/end (its surface is kept only
+// when the end coincides with the old endpoint; a clipped end strictly inside the old interval
+// gets surface none: the seeds do not classify it). Overlapping stays overlapping only if the
+// clipped interval keeps a positive length (the line's open part is a sub-interval of it).
+template <class NT>
+LineInterval<NT> clip_to_range(LineInterval<NT> r, LineRange range) {
+  if (range == LineRange::line || r.answer == Answer::separated) return r;
+  const NT zero = nt::constant<NT>(0), one = nt::constant<NT>(1);
+  // Raise `in` to 0 (and lower `out` to 1 for a segment); an endpoint equal to a range end
+  // takes that end's feature and keeps its own as the surface.
+  auto clip = [&](LineEndpoint<NT>& e, const NT& bound, CGAL::Comparison_result beyond, LineFeature f) {
+    const CGAL::Comparison_result c = nt::compare(e.t, bound);
+    if (c == CGAL::EQUAL) {
+      if (e.feature != f) e.surface = e.feature;
+      e.feature = f;
+    } else if (c == beyond) {
+      e = {bound, f, LineFeature::none};
+    }
+  };
+  auto mark = [&](LineEndpoint<NT>& e, const NT& bound, LineFeature f) {
+    if (nt::compare(e.t, bound) == CGAL::EQUAL && e.feature != f) e.surface = e.feature, e.feature = f;
+  };
+  clip(*r.in, zero, CGAL::SMALLER, LineFeature::origin);
+  mark(*r.out, zero, LineFeature::origin);
+  if (range == LineRange::segment) {
+    clip(*r.out, one, CGAL::LARGER, LineFeature::end);
+    mark(*r.in, one, LineFeature::end);
+  }
+  const CGAL::Comparison_result width = nt::compare(r.in->t, r.out->t);
+  if (width == CGAL::LARGER) return LineInterval<NT>{};
+  if (width == CGAL::EQUAL) r.answer = Answer::touching;
+  return r;
+}
 
 }  // namespace certcyl
