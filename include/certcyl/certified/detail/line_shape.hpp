@@ -119,6 +119,16 @@ class BoundValues {
   // Sign of value(x) - value(y).
   CGAL::Sign compare(BoundKind x, BoundKind y) const {
     if (x == y) return CGAL::ZERO;
+    // Pairs whose difference is known symbolically (an interval does not know that
+    // centre - centre = 0): the two roots differ by 2 half sqrt(disc), the caps by H / sd.
+    if ((x == BoundKind::tube_lo && y == BoundKind::tube_hi) || (x == BoundKind::tube_hi && y == BoundKind::tube_lo)) {
+      if (tube_ == TubeState::point) return CGAL::ZERO;
+      return x == BoundKind::tube_lo ? CGAL::NEGATIVE : CGAL::POSITIVE;
+    }
+    if ((x == BoundKind::cap0 && y == BoundKind::cap1) || (x == BoundKind::cap1 && y == BoundKind::cap0)) {
+      const CGAL::Sign s = nt::sign(q_.sd);  // cap1 - cap0 = H / sd, H > 0
+      return x == BoundKind::cap1 ? s : CGAL::opposite(s);
+    }
     const Parts vx = parts(x), vy = parts(y);
     return sign_of_root_form(NT(vx.p - vy.p), NT(vx.q - vy.q), q_.disc);
   }
