@@ -59,7 +59,7 @@ std::optional<EberlyTriangleCylinderResult> seed(const Triangle<Rational>& t, co
 template <class NT>
 std::string type_name() {
   if constexpr (std::is_same_v<NT, CGAL::Gmpfr>) return "Gmpfr<200>";
-  else return type_name<NT>();
+  else return certcyl::nt::name<NT>();
 }
 
 struct Row {
