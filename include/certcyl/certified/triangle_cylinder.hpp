@@ -196,21 +196,24 @@ inline Point3<Rational> nearest_to_axis(const SlabPolygon<Rational>& S, const Tr
   return best;
 }
 
-// Moves x (in T ∩ slab, q(x) < R) toward the centroid c of S (in T and strictly inside the
-// slab when T crosses the open slab) until the point is strictly inside the cylinder: every
-// point of (x, c] is strictly inside the slab, and q < R holds near x by continuity.
+// A point of T strictly inside the cylinder, from x in T ∩ slab with q(x) < R, when T crosses
+// the open slab. c, the centroid of S's vertices, is in T and strictly between the cap planes;
+// q is convex, so on y = x + lambda (c - x), q(y) <= q(x) + lambda (q(c) - q(x)), and
+// lambda = (R - q(x)) / (2 (q(c) - q(x))) (or c itself if q(c) < R) gives q(y) < R, with y
+// strictly inside the slab because lambda > 0. One exact construction, no search.
 inline Point3<Rational> interior_witness(const Point3<Rational>& x, const SlabPolygon<Rational>& S,
                                          const Cylinder<Rational>& C) {
   if (classify_point(x, C) == Side::inside) return x;
+  const Vec3<Rational> A = C.axis();
+  const Rational R = C.radius * C.radius * squared_length(A);
+  const auto q = [&](const Point3<Rational>& y) { return squared_length(cross(Vec3<Rational>(y - C.p0), A)); };
   Vec3<Rational> c{0, 0, 0};
   for (int i = 0; i < S.n; ++i) c += S.p[i].x;
   c = c / Rational(S.n);
-  Rational lambda(1);
-  for (int halvings = 0; halvings < 4096; ++halvings, lambda = lambda / Rational(2)) {
-    const Point3<Rational> y = x + lambda * Vec3<Rational>(c - x);
-    if (classify_point(y, C) == Side::inside) return y;
-  }
-  throw std::logic_error("triangle_cylinder: no interior witness found near the nearest point");
+  const Rational qx = q(x), qc = q(c);
+  if (qc < R) return c;
+  const Rational lambda = (R - qx) / (2 * (qc - qx));
+  return x + lambda * Vec3<Rational>(c - x);
 }
 
 }  // namespace detail
