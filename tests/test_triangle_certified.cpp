@@ -234,10 +234,10 @@ BOOST_AUTO_TEST_CASE(degenerate_triangles) {
                 Sep::outside_tube);
 }
 
-// An oblique cylinder with an irrational-free but non-trivial axis, touching by construction:
-// the cylinder from (0,0,0) to (2,2,1) (|A| = 3), radius 1; n = (1,-1,0)/sqrt2 is perpendicular to
-// A, so the point (1,1,1/2) + (1,-1,0) / sqrt2 ... is irrational; use instead the unit normal
-// (2,-1,-2)/3, perpendicular to A: X = (1,1,1/2) + (2,-1,-2)/3 is on the wall.
+// An oblique cylinder, touching by construction: the cylinder from (0,0,0) to (2,2,1)
+// (|A| = 3), radius 1. The unit vector n = (2,-1,-2)/3 is perpendicular to A, so
+// X = (1,1,1/2) + n, at mid-height, is on the wall, and the plane through X with normal n is
+// tangent to the wall along a line parallel to A.
 BOOST_AUTO_TEST_CASE(oblique_wall_contact) {
   const Cylinder<Rational> c{{0, 0, 0}, {2, 2, 1}, Rational(1)};
   const Point3<Rational> X = pt(Q("5/3"), Q("2/3"), Q("-1/6"));
