@@ -185,12 +185,15 @@ class CylinderCylinderSolver {
   using Clock = std::chrono::steady_clock;
 
   // ---- stage bookkeeping ----------------------------------------------------------------------
+  // One clock reading per stage boundary: a stage starts when the previous one ends.
   void begin(CylinderStage s) {
     stage_ = s;
-    start_ = Clock::now();
+    if (!started_) start_ = Clock::now(), started_ = true;
   }
   void end() {
-    result_.stage_seconds[static_cast<std::size_t>(stage_)] += std::chrono::duration<double>(Clock::now() - start_).count();
+    const Clock::time_point now = Clock::now();
+    result_.stage_seconds[static_cast<std::size_t>(stage_)] += std::chrono::duration<double>(now - start_).count();
+    start_ = now;
   }
   bool decide(Answer a) {
     end();
@@ -393,7 +396,7 @@ class CylinderCylinderSolver {
     bound_by_point(to_iv(m.point));
     if (std::isfinite(m.value) && m.value < 1 && check_direction(m.direction) == CGAL::POSITIVE)
       return separated_by(m.direction.map([](double x) { return Rational(x); }));
-    if (std::isfinite(m.dual) && m.dual > 1 && check_point(m.point))
+    if (scale_double(m.point) < 1 && check_point(m.point))
       return overlapping_at(m.point.map([](double x) { return Rational(x); }));
     return pass();
   }
@@ -474,6 +477,7 @@ class CylinderCylinderSolver {
   CylinderCylinderResult result_;
   CylinderStage stage_ = CylinderStage::midpoints;
   Clock::time_point start_;
+  bool started_ = false;
 };
 
 }  // namespace detail
@@ -482,8 +486,13 @@ class CylinderCylinderSolver {
 // invalid cylinder (field "a" or "b").
 inline CylinderCylinderResult certified_cylinder_cylinder(const Cylinder<Rational>& a, const Cylinder<Rational>& b,
                                                           const CylinderCylinderOptions& options = {}) {
-  validate(a, "a");
-  validate(b, "b");
+  // validate(), with the common valid case decided without temporaries.
+  const auto fine = [](const Cylinder<Rational>& c) {
+    return mpq_sgn(c.radius.mpq()) > 0 &&
+           !(mpq_equal(c.p0.x.mpq(), c.p1.x.mpq()) && mpq_equal(c.p0.y.mpq(), c.p1.y.mpq()) && mpq_equal(c.p0.z.mpq(), c.p1.z.mpq()));
+  };
+  if (!fine(a)) validate(a, "a");
+  if (!fine(b)) validate(b, "b");
   return detail::CylinderCylinderSolver(a, b, options).run();
 }
 

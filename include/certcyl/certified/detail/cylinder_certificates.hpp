@@ -36,6 +36,7 @@
 #include <CGAL/Interval_nt.h>
 #include <gmp.h>
 
+#include <cmath>
 #include <optional>
 #include <type_traits>
 #include <utility>
@@ -153,13 +154,25 @@ auto interval_attempt(F&& f) -> std::optional<decltype(f())> {
 
 // ---- conversions of exact input --------------------------------------------------------------
 
-// True (and d set) when q is exactly a normal binary64 value: cheap, no allocation.
+// True (and d set) when q is exactly a binary64 value with a numerator below 2^53 and a
+// denominator 2^k, k <= 960 (so no subnormal result): the common case of binary64 input,
+// read from the limbs without allocation or division.
 inline bool exact_double(const Rational& q, double& d) {
+  static_assert(GMP_LIMB_BITS == 64, "exact_double reads 64-bit limbs");
   mpz_srcptr num = mpq_numref(q.mpq());
   mpz_srcptr den = mpq_denref(q.mpq());
-  const std::size_t den_bits = mpz_sizeinbase(den, 2);
-  if (mpz_sizeinbase(num, 2) > 53 || den_bits > 960 || mpz_scan1(den, 0) != den_bits - 1) return false;
-  d = mpq_get_d(q.mpq());  // exact: numerator below 2^53, denominator a power of two
+  const std::size_t num_limbs = mpz_size(num), den_limbs = mpz_size(den);
+  if (num_limbs > 1 || den_limbs > 15) return false;
+  for (std::size_t i = 0; i + 1 < den_limbs; ++i)
+    if (mpz_getlimbn(den, static_cast<mp_size_t>(i)) != 0) return false;
+  const mp_limb_t top = mpz_getlimbn(den, static_cast<mp_size_t>(den_limbs - 1));
+  if ((top & (top - 1)) != 0) return false;  // not a power of two
+  const mp_limb_t n = num_limbs == 0 ? 0 : mpz_getlimbn(num, 0);
+  if (n >> 53 != 0) return false;
+  const int k = static_cast<int>(64 * (den_limbs - 1)) + __builtin_ctzll(top);
+  if (k > 960) return false;
+  const double magnitude = std::ldexp(static_cast<double>(n), -k);  // exact
+  d = mpz_sgn(num) < 0 ? -magnitude : magnitude;
   return true;
 }
 
