@@ -1,0 +1,209 @@
+// Cylinder against cylinder, side by side on the same random pairs: the certified query (exact
+// rational input, and binary64 input taken exactly), and FCL's fcl::collide on two
+// fcl::Cylinderd with its default GJK solver (libccd), when FCL is installed.
+//
+// Pairs: midpoints uniform in [-1, 1]^3, axis directions uniform, lengths in [0.2, 2], radii in
+// [0.05, 0.5] (binary64 values); split by the certified answer into separated and overlapping
+// sets, timed apart. Each benchmark reports the mean time per query (Google Benchmark's figure)
+// and, as counters, the median over pairs of the per-pair time (best of 5 runs per pair).
+// BM_certified_stages reports the fraction of pairs each stage decided and the mean time spent
+// in each stage per query.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "certcyl/certified/cylinder_cylinder.hpp"
+
+#ifdef CERTCYL_HAVE_FCL
+#include <fcl/narrowphase/collision.h>
+#include <fcl/geometry/shape/cylinder.h>
+#endif
+
+namespace {
+
+using certcyl::Cylinder;
+using certcyl::Rational;
+using D3 = certcyl::Vec3<double>;
+
+Cylinder<double> random_cylinder(std::mt19937_64& g) {
+  std::uniform_real_distribution<double> u(-1, 1), len(0.2, 2), rad(0.05, 0.5);
+  D3 w;
+  double n2;
+  do {
+    w = {u(g), u(g), u(g)};
+    n2 = dot(w, w);
+  } while (n2 < 0.01 || n2 > 1);
+  const double h = len(g) / (2 * std::sqrt(n2));
+  const D3 c{u(g), u(g), u(g)};
+  return {c - h * w, c + h * w, rad(g)};
+}
+
+struct Pair {
+  Cylinder<double> a, b;
+  Cylinder<Rational> qa, qb;
+};
+
+struct Pairs {
+  std::vector<Pair> separated, overlapping, all;
+};
+
+const Pairs& pairs() {
+  static const Pairs p = [] {
+    Pairs r;
+    std::mt19937_64 g(20240611);
+    const auto q = [](double x) { return Rational(x); };
+    for (int i = 0; i < 4000; ++i) {
+      Pair p{random_cylinder(g), random_cylinder(g), {}, {}};
+      p.qa = p.a.map(q);
+      p.qb = p.b.map(q);
+      const auto res = certcyl::certified_cylinder_cylinder(p.qa, p.qb);
+      if (res.answer == certcyl::Answer::separated) r.separated.push_back(p);
+      if (res.answer == certcyl::Answer::overlapping) r.overlapping.push_back(p);
+      r.all.push_back(p);
+    }
+    return r;
+  }();
+  return p;
+}
+
+const std::vector<Pair>& set(int which) { return which == 0 ? pairs().separated : pairs().overlapping; }
+
+// Median over pairs of the best-of-5 time of f(pair), in nanoseconds.
+template <class F>
+double median_ns(const std::vector<Pair>& ps, F f) {
+  std::vector<double> t;
+  t.reserve(ps.size());
+  for (const Pair& p : ps) {
+    double best = INFINITY;
+    for (int k = 0; k < 5; ++k) {
+      const auto s = std::chrono::steady_clock::now();
+      benchmark::DoNotOptimize(f(p));
+      best = std::min(best, std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - s).count());
+    }
+    t.push_back(best);
+  }
+  std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
+  return t[t.size() / 2];
+}
+
+template <class F>
+void run(benchmark::State& state, F f) {
+  const std::vector<Pair>& ps = set(static_cast<int>(state.range(0)));
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(f(ps[i]));
+    if (++i == ps.size()) i = 0;
+  }
+  state.counters["median_ns"] = median_ns(ps, f);
+  state.counters["pairs"] = static_cast<double>(ps.size());
+  state.SetLabel(state.range(0) == 0 ? "separated" : "overlapping");
+}
+
+void BM_certified_rational(benchmark::State& state) {
+  run(state, [](const Pair& p) { return certcyl::certified_cylinder_cylinder(p.qa, p.qb).answer; });
+}
+
+void BM_certified_double(benchmark::State& state) {
+  run(state, [](const Pair& p) { return certcyl::certified_cylinder_cylinder(p.a, p.b).answer; });
+}
+
+void BM_certified_double_no_gap(benchmark::State& state) {
+  certcyl::CylinderCylinderOptions o;
+  o.gap_enclosure = false;
+  run(state, [o](const Pair& p) { return certcyl::certified_cylinder_cylinder(p.a, p.b, o).answer; });
+}
+
+#ifdef CERTCYL_HAVE_FCL
+struct FclPair {
+  std::shared_ptr<fcl::Cylinderd> a, b;
+  fcl::Transform3d ta, tb;
+};
+
+FclPair to_fcl(const Pair& p) {
+  auto one = [](const Cylinder<double>& c, std::shared_ptr<fcl::Cylinderd>& geom, fcl::Transform3d& tf) {
+    const D3 A = c.p1 - c.p0, m = 0.5 * (c.p0 + c.p1);
+    const double len = std::sqrt(dot(A, A));
+    geom = std::make_shared<fcl::Cylinderd>(c.radius, len);
+    tf = fcl::Transform3d::Identity();
+    tf.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), Eigen::Vector3d(A.x, A.y, A.z)).toRotationMatrix();
+    tf.translation() = Eigen::Vector3d(m.x, m.y, m.z);
+  };
+  FclPair f;
+  one(p.a, f.a, f.ta);
+  one(p.b, f.b, f.tb);
+  return f;
+}
+
+bool fcl_collide(const FclPair& f) {
+  fcl::CollisionRequestd request;
+  fcl::CollisionResultd result;
+  fcl::collide(f.a.get(), f.ta, f.b.get(), f.tb, request, result);
+  return result.isCollision();
+}
+
+void BM_fcl(benchmark::State& state) {
+  const std::vector<Pair>& ps = set(static_cast<int>(state.range(0)));
+  std::vector<FclPair> fs;
+  for (const Pair& p : ps) fs.push_back(to_fcl(p));
+  std::size_t i = 0, wrong = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(fcl_collide(fs[i]));
+    if (++i == fs.size()) i = 0;
+  }
+  // Median per pair, and how often FCL disagrees with the certified answer.
+  std::vector<double> t;
+  for (std::size_t k = 0; k < fs.size(); ++k) {
+    double best = INFINITY;
+    bool hit = false;
+    for (int r = 0; r < 5; ++r) {
+      const auto s = std::chrono::steady_clock::now();
+      hit = fcl_collide(fs[k]);
+      best = std::min(best, std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - s).count());
+    }
+    t.push_back(best);
+    if (hit != (state.range(0) == 1)) ++wrong;
+  }
+  std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
+  state.counters["median_ns"] = t[t.size() / 2];
+  state.counters["pairs"] = static_cast<double>(fs.size());
+  state.counters["disagree"] = static_cast<double>(wrong);
+  state.SetLabel(state.range(0) == 0 ? "separated" : "overlapping");
+}
+BENCHMARK(BM_fcl)->Arg(0)->Arg(1);
+#endif
+
+// Which stage decided, and the time spent per stage, over all pairs (one pass per iteration).
+void BM_certified_stages(benchmark::State& state) {
+  const std::vector<Pair>& ps = pairs().all;
+  std::array<double, certcyl::kCylinderStages + 1> decided{};
+  std::array<double, certcyl::kCylinderStages> seconds{};
+  double runs = 0;
+  for (auto _ : state) {
+    for (const Pair& p : ps) {
+      const auto r = certcyl::certified_cylinder_cylinder(p.qa, p.qb);
+      decided[static_cast<std::size_t>(r.stage)] += 1;
+      for (std::size_t s = 0; s < seconds.size(); ++s) seconds[s] += r.stage_seconds[s];
+      runs += 1;
+    }
+  }
+  for (std::size_t s = 0; s <= certcyl::kCylinderStages; ++s) {
+    const std::string name(certcyl::to_string(static_cast<certcyl::CylinderStage>(s)));
+    state.counters["decided_" + name] = decided[s] / runs;
+    if (s < seconds.size()) state.counters["ns_" + name] = 1e9 * seconds[s] / runs;
+  }
+  state.counters["beyond_fast_path"] = 1 - (decided[0] + decided[1]) / runs;
+  state.counters["beyond_double"] = (decided[3] + decided[4] + decided[5]) / runs;
+}
+BENCHMARK(BM_certified_stages)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+BENCHMARK(BM_certified_rational)->Arg(0)->Arg(1);
+BENCHMARK(BM_certified_double)->Arg(0)->Arg(1);
+BENCHMARK(BM_certified_double_no_gap)->Arg(0)->Arg(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();

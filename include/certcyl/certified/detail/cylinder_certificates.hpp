@@ -1,0 +1,217 @@
+// certcyl/certified/detail/cylinder_certificates.hpp -- the exact checks behind every answer of
+// certified_cylinder_cylinder.
+//
+// Notation (design note, section 4). Cylinder i has endpoints p0_i, p1_i, axis A_i = p1_i - p0_i,
+// radius r_i, midpoint m_i. We work with T = 2 Delta = (p0_1 + p1_1) - (p0_0 + p1_0), which needs
+// no division, and with
+//   phi2(D) = |D.A0| + |D.A1| + 2 r0 |D x A0| / |A0| + 2 r1 |D x A1| / |A1|  ( = 2 phi(D) ),
+// so that phi(D) / (D.Delta) = phi2(D) / (D.T) and
+//   phi* = min { phi2(D) : D.T = 1 }   (separated iff phi* < 1, touching iff = 1).
+//
+// Checks (each a sign of a polynomial in the input and the certificate):
+//   separation_sign(D)  sign of |D.T| - phi2(D) = c - sqrt(p) - sqrt(q) with
+//                         c = |D.T| - |D.A0| - |D.A1|,  p = 4 r0^2 |D x A0|^2 / A0.A0,
+//                         q = 4 r1^2 |D x A1|^2 / A1.A1,
+//                       decided by squaring (sign_c_minus_roots). POSITIVE: D separates
+//                       (phi* < 1). ZERO: phi(D) = D.Delta, so phi* <= 1 (not overlapping).
+//                       Degree: c is 2 in D and the input; the final comparison is degree 8 in
+//                       D and 12 in the input (after clearing the denominators A_i.A_i).
+//   classify_point      the polynomial point-in-cylinder test (predicates/point_in_cylinder.hpp):
+//                       a point strictly inside both proves overlapping; a point in both closed
+//                       cylinders proves "not separated".
+// Run on Interval_nt these either decide correctly or throw Uncertain_conversion_exception;
+// the caller catches it in one place (interval_attempt) and reruns on Gmpq.
+//
+// Bounds on phi* (growth-distance duality, design note section 4): for any D with D.T != 0,
+//   phi* <= phi2(D) / |D.T|;
+// for any point X, with sigma(X) = max_i max( |(2X - p0_i - p1_i).A_i| / A_i.A_i,
+//                                           |(X - p0_i) x A_i| / (r_i |A_i|) ),
+// X lies in both cylinders scaled by sigma(X) about their midpoints, so the growth distance
+// 1/phi* is at most sigma(X):  phi* >= 1 / sigma(X).
+// (Proof: the scaled cylinders m_i + s (K_i - m_i) meet iff s phi(D) >= D.Delta for every D,
+// i.e. iff s >= 1/phi*.)
+#pragma once
+
+#include <CGAL/FPU.h>
+#include <CGAL/Interval_nt.h>
+#include <gmp.h>
+
+#include <cmath>
+#include <optional>
+#include <type_traits>
+#include <utility>
+
+#include "certcyl/number_traits.hpp"
+#include "certcyl/predicates/point_in_cylinder.hpp"
+#include "certcyl/primitives.hpp"
+
+namespace certcyl::detail {
+
+// |x| as an enclosure: for an interval that straddles zero, [0, max]; never throws.
+template <class NT>
+NT magnitude(const NT& x) {
+  if constexpr (std::is_same_v<NT, Interval>) {
+    return CGAL::abs(x);
+  } else {
+    return nt::sign(x) == CGAL::NEGATIVE ? NT(-x) : x;
+  }
+}
+
+// Sign tests through nt::sign (nt::is_zero and friends are ambiguous with CGAL's under ADL).
+template <class NT>
+bool sign_is(const NT& x, CGAL::Sign s) {
+  return nt::sign(x) == s;
+}
+
+// x^2 as an enclosure with a non-negative lower end for intervals.
+template <class NT>
+NT squared(const NT& x) {
+  if constexpr (std::is_same_v<NT, Interval>) {
+    return CGAL::square(x);
+  } else {
+    return x * x;
+  }
+}
+
+template <class NT>
+NT squared_norm(const Vec3<NT>& v) {
+  return squared(v.x) + squared(v.y) + squared(v.z);
+}
+
+// The quantities every check needs, in one number type.
+template <class NT>
+struct CylinderPair {
+  Cylinder<NT> c0, c1;
+  Vec3<NT> A0, A1, T;  // axes and T = 2 Delta
+  NT AA0, AA1;         // squared axis lengths
+
+  static CylinderPair make(const Cylinder<NT>& c0, const Cylinder<NT>& c1) {
+    CylinderPair d{c0, c1, c0.axis(), c1.axis(), (c1.p0 + c1.p1) - (c0.p0 + c0.p1), NT(), NT()};
+    d.AA0 = squared_norm(d.A0);
+    d.AA1 = squared_norm(d.A1);
+    return d;
+  }
+};
+
+// Sign of c - sqrt(p) - sqrt(q) for p, q >= 0, by squaring (design note, section 4):
+// c < 0: negative; c = 0: zero iff p = q = 0; c > 0: with e = c^2 - p - q, positive iff
+// e >= 0 and e^2 > 4pq, zero iff e >= 0 and e^2 = 4pq.
+template <class NT>
+CGAL::Sign sign_c_minus_roots(const NT& c, const NT& p, const NT& q) {
+  const CGAL::Sign sc = nt::sign(c);
+  if (sc == CGAL::NEGATIVE) return CGAL::NEGATIVE;
+  if (sc == CGAL::ZERO) return (sign_is(p, CGAL::ZERO) && sign_is(q, CGAL::ZERO)) ? CGAL::ZERO : CGAL::NEGATIVE;
+  const NT e = squared(c) - p - q;
+  if (sign_is(e, CGAL::NEGATIVE)) return CGAL::NEGATIVE;
+  // else: e >= 0, so c > sqrt(p) + sqrt(q) iff e > 2 sqrt(pq) iff e^2 > 4pq.
+  return nt::sign(NT(squared(e) - nt::constant<NT>(4) * p * q));
+}
+
+// The three numbers of separation_sign for direction D.
+template <class NT>
+struct SeparationTerms {
+  NT c, p, q;
+};
+
+template <class NT>
+SeparationTerms<NT> separation_terms(const CylinderPair<NT>& d, const Vec3<NT>& D) {
+  const NT four = nt::constant<NT>(4);
+  const NT c = magnitude(dot(D, d.T)) - magnitude(dot(D, d.A0)) - magnitude(dot(D, d.A1));
+  const NT p = four * squared(d.c0.radius) * squared_norm(cross(D, d.A0)) / d.AA0;
+  const NT q = four * squared(d.c1.radius) * squared_norm(cross(D, d.A1)) / d.AA1;
+  return {c, p, q};
+}
+
+// Sign of |D.T| - phi2(D): POSITIVE when D separates the cylinders, ZERO when it supports
+// both at a common plane (phi(D) = |D.Delta|).
+template <class NT>
+CGAL::Sign separation_sign(const CylinderPair<NT>& d, const Vec3<NT>& D) {
+  const SeparationTerms<NT> t = separation_terms(d, D);
+  return sign_c_minus_roots(t.c, t.p, t.q);
+}
+
+template <class NT>
+bool strictly_inside_both(const CylinderPair<NT>& d, const Point3<NT>& X) {
+  return classify_point(X, d.c0) == Side::inside && classify_point(X, d.c1) == Side::inside;
+}
+
+template <class NT>
+bool in_both_closed(const CylinderPair<NT>& d, const Point3<NT>& X) {
+  return classify_point(X, d.c0) != Side::outside && classify_point(X, d.c1) != Side::outside;
+}
+
+// Runs f() on intervals under upward rounding; nullopt when an interval comparison could not
+// be decided. This is the one place where Uncertain_conversion_exception is caught.
+template <class F>
+auto interval_attempt(F&& f) -> std::optional<decltype(f())> {
+  CGAL::Protect_FPU_rounding<true> upward;
+  try {
+    return f();
+  } catch (const CGAL::Uncertain_conversion_exception&) {
+    return std::nullopt;
+  }
+}
+
+// ---- conversions of exact input --------------------------------------------------------------
+
+// True (and d set) when q is exactly a binary64 value with a numerator below 2^53 and a
+// denominator 2^k, k <= 960 (so no subnormal result): the common case of binary64 input,
+// read from the limbs without allocation or division.
+inline bool exact_double(const Rational& q, double& d) {
+  static_assert(GMP_LIMB_BITS == 64, "exact_double reads 64-bit limbs");
+  mpz_srcptr num = mpq_numref(q.mpq());
+  mpz_srcptr den = mpq_denref(q.mpq());
+  const std::size_t num_limbs = mpz_size(num), den_limbs = mpz_size(den);
+  if (num_limbs > 1 || den_limbs > 15) return false;
+  for (std::size_t i = 0; i + 1 < den_limbs; ++i)
+    if (mpz_getlimbn(den, static_cast<mp_size_t>(i)) != 0) return false;
+  const mp_limb_t top = mpz_getlimbn(den, static_cast<mp_size_t>(den_limbs - 1));
+  if ((top & (top - 1)) != 0) return false;  // not a power of two
+  const mp_limb_t n = num_limbs == 0 ? 0 : mpz_getlimbn(num, 0);
+  if (n >> 53 != 0) return false;
+  const int k = static_cast<int>(64 * (den_limbs - 1)) + __builtin_ctzll(top);
+  if (k > 960) return false;
+  const double magnitude = std::ldexp(static_cast<double>(n), -k);  // exact
+  d = mpz_sgn(num) < 0 ? -magnitude : magnitude;
+  return true;
+}
+
+inline Interval enclose_interval(const Rational& q) {
+  double d;
+  if (exact_double(q, d)) return Interval(d);
+  auto [lo, hi] = enclose(q);
+  return Interval(lo, hi);
+}
+
+inline double nearest_double(const Rational& q) {
+  double d;
+  if (exact_double(q, d)) return d;
+  return round_to_nearest<double>(q);
+}
+
+// ---- bounds on phi* (intervals only; call under upward rounding) -----------------------------
+
+// An enclosure of phi2(D) / |D.T|, the upper bound on phi* that D gives; nullopt when D.T may
+// vanish.
+inline std::optional<Interval> ratio_enclosure(const CylinderPair<Interval>& d, const Vec3<Interval>& D) {
+  const Interval dt = CGAL::abs(dot(D, d.T));
+  if (!(dt.inf() > 0)) return std::nullopt;
+  const Interval two(2);
+  const Interval phi2 = CGAL::abs(dot(D, d.A0)) + CGAL::abs(dot(D, d.A1)) +
+                        two * d.c0.radius * CGAL::sqrt(squared_norm(cross(D, d.A0)) / d.AA0) +
+                        two * d.c1.radius * CGAL::sqrt(squared_norm(cross(D, d.A1)) / d.AA1);
+  return phi2 / dt;
+}
+
+// An enclosure of sigma(X) (header comment): X lies in both cylinders scaled by sigma(X).
+inline Interval scale_enclosure(const CylinderPair<Interval>& d, const Point3<Interval>& X) {
+  auto one = [&X](const Cylinder<Interval>& c, const Vec3<Interval>& A, const Interval& AA) {
+    const Interval axial = CGAL::abs(dot(Interval(2) * X - c.p0 - c.p1, A)) / AA;
+    const Interval radial = CGAL::sqrt(squared_norm(cross(X - c.p0, A)) / (CGAL::square(c.radius) * AA));
+    return Interval(std::max(axial.inf(), radial.inf()), std::max(axial.sup(), radial.sup()));
+  };
+  const Interval s0 = one(d.c0, d.A0, d.AA0), s1 = one(d.c1, d.A1, d.AA1);
+  return Interval(std::max(s0.inf(), s1.inf()), std::max(s0.sup(), s1.sup()));
+}
+
+}  // namespace certcyl::detail

@@ -1,0 +1,185 @@
+// certcyl/certified/detail/cylinder_touching.hpp -- exact proof that two cylinders touch, from a
+// rational candidate normal D.
+//
+// Touching needs two facts (design note, section 4):
+//   (a) phi(D) = |D.Delta| exactly for some D: then phi* <= 1, so the interiors are disjoint;
+//   (b) a point in both closed cylinders: then they are not separated.
+// (a) is separation_sign(D) == ZERO in Gmpq. For (b) we take D with D.T > 0 and build the
+// support sets F0 of cylinder 0 in direction D and F1 of cylinder 1 in direction -D; by (a) both
+// lie in one plane, and the cylinders' common points are exactly F0 n F1.
+//
+// Support set of cylinder (p0, p1, r) in direction E (A = p1 - p0):
+//   axial part   the end p1 if E.A > 0, p0 if E.A < 0, the whole axis segment if E.A = 0;
+//   radial part  the offset o = r P E / |P E| (P the projection orthogonal to A) if E x A != 0,
+//                the whole disk of radius r if E x A = 0 (E parallel to A).
+// So F is a rim point (end + o), a wall segment [p0 + o, p1 + o], or a cap disk (end, r).
+// |P E| = |E x A| / |A| = sqrt(p) / (2 r) with p the term of separation_terms. Under (a),
+// c = sqrt(p) + sqrt(q) with c, p, q rational, and this forces sqrt(p) and sqrt(q) to be rational
+// (if c > 0: sqrt(q) = c - sqrt(p) squares to sqrt(p) = (c^2 + p - q) / (2c); if c = 0 then
+// p = q = 0). So for a rational D every support set, and every contact point built below, is
+// rational: the design note's Q(sqrt) for rim-cap contacts is not needed once (a) holds.
+//
+// Contact types by the support sets: cap-cap, cap-wall, wall-wall, rim-cap, rim-wall, rim-rim.
+// A rim-wall or rim-rim contact whose normal is irrational is out of reach of this file; the
+// caller answers undecided there (with a certified bound on |phi* - 1|).
+#pragma once
+
+#include <CGAL/Gmpq.h>
+#include <CGAL/Gmpz.h>
+#include <gmp.h>
+
+#include <optional>
+#include <string>
+
+#include "certcyl/certified/detail/cylinder_certificates.hpp"
+
+namespace certcyl {
+
+// Which part of a cylinder's boundary a contact uses.
+enum class CylinderFeature { cap, wall, rim };
+
+inline constexpr const char* to_string(CylinderFeature f) {
+  return f == CylinderFeature::cap ? "cap" : (f == CylinderFeature::wall ? "wall" : "rim");
+}
+
+// A proved contact: the features of cylinder 0 and 1 that meet, the common normal (exact,
+// D.Delta > 0, phi(D) = D.Delta) and one common point (exact).
+struct CylinderContact {
+  CylinderFeature feature0 = CylinderFeature::wall, feature1 = CylinderFeature::wall;
+  Vec3<Rational> normal;
+  Point3<Rational> point;
+
+  // "cap-wall" and so on; cylinder 0's feature first.
+  std::string type() const { return std::string(to_string(feature0)) + "-" + to_string(feature1); }
+};
+
+namespace detail {
+
+// The square root of q when q is the square of a rational.
+inline std::optional<Rational> rational_sqrt(const Rational& q) {
+  if (q < 0) return std::nullopt;
+  mpz_srcptr n = mpq_numref(q.mpq());
+  mpz_srcptr d = mpq_denref(q.mpq());
+  if (!mpz_perfect_square_p(n) || !mpz_perfect_square_p(d)) return std::nullopt;
+  CGAL::Gmpz rn, rd;
+  mpz_sqrt(rn.mpz(), n);
+  mpz_sqrt(rd.mpz(), d);
+  return Rational(rn, rd);
+}
+
+struct SupportSet {
+  CylinderFeature feature;
+  Point3<Rational> a, b;  // rim: a; wall: segment [a, b]; cap: centre a
+  Rational radius;        // cap only
+};
+
+// Support set of cylinder c in direction E, given root = sqrt(4 r^2 |E x A|^2 / A.A) (rational).
+inline SupportSet support_set(const Cylinder<Rational>& c, const Vec3<Rational>& E, const Rational& root) {
+  const Vec3<Rational> A = c.axis();
+  const Rational EA = dot(E, A);
+  const Rational AA = dot(A, A);
+  if (root == 0) {
+    // E is parallel to A: a cap disk.
+    return {CylinderFeature::cap, EA > 0 ? c.p1 : c.p0, {}, c.radius};
+  }
+  // o = r P E / |P E| with P E = E - (E.A / A.A) A and |P E| = root / (2 r).
+  const Vec3<Rational> PE = E - (EA / AA) * A;
+  const Vec3<Rational> o = (Rational(2) * c.radius * c.radius / root) * PE;
+  if (EA == 0) return {CylinderFeature::wall, c.p0 + o, c.p1 + o, Rational(0)};
+  return {CylinderFeature::rim, (EA > 0 ? c.p1 : c.p0) + o, {}, Rational(0)};
+}
+
+// Closest point of segment [a, b] to x (rational).
+inline Point3<Rational> closest_on_segment(const Point3<Rational>& a, const Point3<Rational>& b, const Point3<Rational>& x) {
+  const Vec3<Rational> ab = b - a;
+  Rational t = dot(x - a, ab) / dot(ab, ab);
+  if (t < 0) t = 0;
+  if (t > 1) t = 1;
+  return a + t * ab;
+}
+
+// A candidate common point of two support sets lying in one plane; the caller checks it.
+inline Point3<Rational> common_point_candidate(const SupportSet& f0, const SupportSet& f1) {
+  using F = CylinderFeature;
+  if (f0.feature == F::rim) return f0.a;
+  if (f1.feature == F::rim) return f1.a;
+  if (f0.feature == F::cap && f1.feature == F::cap) {
+    // Two coplanar disks meet iff |c1 - c0| <= r0 + r1, and then at c0 + r0/(r0+r1) (c1 - c0).
+    return f0.a + (f0.radius / (f0.radius + f1.radius)) * (f1.a - f0.a);
+  }
+  if (f0.feature == F::cap) return closest_on_segment(f1.a, f1.b, f0.a);
+  if (f1.feature == F::cap) return closest_on_segment(f0.a, f0.b, f1.a);
+  // Two coplanar segments. Crossing: intersect the lines a0 + s e0 and a1 + t e1 (the normal
+  // equations of the closest points, exact). Parallel: the middle of the overlap of their
+  // projections on the common direction.
+  const Vec3<Rational> e0 = f0.b - f0.a, e1 = f1.b - f1.a, w = f0.a - f1.a;
+  const Rational a = dot(e0, e0), b = dot(e0, e1), c = dot(e1, e1), d = dot(e0, w), e = dot(e1, w);
+  const Rational den = a * c - b * b;
+  if (den != 0) {
+    const Rational s = (b * e - c * d) / den;
+    return f0.a + s * e0;
+  }
+  // else: parallel segments; parameters of f1's ends along f0.
+  Rational t0 = dot(f1.a - f0.a, e0) / a, t1 = dot(f1.b - f0.a, e0) / a;
+  if (t1 < t0) std::swap(t0, t1);
+  const Rational lo = t0 > 0 ? t0 : Rational(0);
+  const Rational hi = t1 < 1 ? t1 : Rational(1);
+  return f0.a + ((lo + hi) / 2) * e0;
+}
+
+// Proves that the cylinders touch with normal D (any rational D != 0), or returns nullopt.
+// Every fact used is checked exactly in Gmpq.
+inline std::optional<CylinderContact> prove_touching(const CylinderPair<Rational>& d, Vec3<Rational> D) {
+  if (D.x == 0 && D.y == 0 && D.z == 0) return std::nullopt;
+  const Rational DT = dot(D, d.T);
+  if (DT == 0) return std::nullopt;
+  if (DT < 0) D = -D;
+  const SeparationTerms<Rational> t = separation_terms(d, D);
+  if (sign_c_minus_roots(t.c, t.p, t.q) != CGAL::ZERO) return std::nullopt;
+  // (a) holds: phi(D) = D.Delta. The roots are rational (header comment).
+  const std::optional<Rational> root0 = rational_sqrt(t.p), root1 = rational_sqrt(t.q);
+  if (!root0 || !root1) return std::nullopt;  // unreachable when (a) holds; kept as a guard
+  const SupportSet f0 = support_set(d.c0, D, *root0);
+  const SupportSet f1 = support_set(d.c1, -D, *root1);
+  const Point3<Rational> X = common_point_candidate(f0, f1);
+  if (!in_both_closed(d, X)) return std::nullopt;
+  // (b) holds.
+  return CylinderContact{f0.feature, f1.feature, D, X};
+}
+
+// Continued-fraction reconstruction: the first convergent p/q of x with |x - p/q| <= tolerance.
+inline Rational simplest_convergent(const Rational& x, const Rational& tolerance) {
+  CGAL::Gmpz h_prev(1), h_prev2(0), k_prev(0), k_prev2(1);
+  Rational y = x;
+  for (int i = 0; i < 400; ++i) {
+    CGAL::Gmpz a;
+    mpz_fdiv_q(a.mpz(), mpq_numref(y.mpq()), mpq_denref(y.mpq()));
+    const CGAL::Gmpz h = a * h_prev + h_prev2, k = a * k_prev + k_prev2;
+    const Rational approx(h, k);
+    const Rational error = x - approx;
+    if ((error < 0 ? Rational(-error) : error) <= tolerance) return approx;
+    const Rational frac = y - Rational(a);
+    if (frac == 0) return approx;
+    y = 1 / frac;
+    h_prev2 = h_prev;
+    h_prev = h;
+    k_prev2 = k_prev;
+    k_prev = k;
+  }
+  return x;
+}
+
+// A rational direction with small numbers near D: each coordinate divided by the largest one
+// in magnitude, then reconstructed within the tolerance.
+inline Vec3<Rational> reconstruct_direction(const Vec3<Rational>& D, const Rational& tolerance) {
+  std::size_t k = 0;
+  auto mag = [](const Rational& x) { return x < 0 ? Rational(-x) : x; };
+  for (std::size_t i = 1; i < 3; ++i)
+    if (mag(D[i]) > mag(D[k])) k = i;
+  Vec3<Rational> R;
+  for (std::size_t i = 0; i < 3; ++i) R[i] = i == k ? Rational(1) : simplest_convergent(D[i] / D[k], tolerance);
+  return R;
+}
+
+}  // namespace detail
+}  // namespace certcyl

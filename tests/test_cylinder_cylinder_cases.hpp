@@ -1,0 +1,146 @@
+// Shared constructions for the certified cylinder-cylinder tests: exactly touching pairs for each
+// contact type, rational rigid motions, and an independent exact check of every certificate.
+#pragma once
+
+#include <CGAL/CORE_Expr.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "certcyl/certified/cylinder_cylinder.hpp"
+
+namespace cctest {
+
+using certcyl::Cylinder;
+using certcyl::Point3;
+using certcyl::Vec3;
+using Q = certcyl::Rational;
+
+inline Cylinder<Q> cyl(Point3<Q> p0, Point3<Q> p1, Q r) { return {p0, p1, r}; }
+
+// A rational rotation from the integer quaternion (a, b, c, d): the usual matrix divided by
+// a^2 + b^2 + c^2 + d^2, exactly orthogonal.
+struct Rotation {
+  std::array<std::array<Q, 3>, 3> m;
+  static Rotation from_quaternion(long a, long b, long c, long d) {
+    const Q n(a * a + b * b + c * c + d * d);
+    Rotation r;
+    r.m = {{{Q(a * a + b * b - c * c - d * d) / n, Q(2 * (b * c - a * d)) / n, Q(2 * (b * d + a * c)) / n},
+            {Q(2 * (b * c + a * d)) / n, Q(a * a - b * b + c * c - d * d) / n, Q(2 * (c * d - a * b)) / n},
+            {Q(2 * (b * d - a * c)) / n, Q(2 * (c * d + a * b)) / n, Q(a * a - b * b - c * c + d * d) / n}}};
+    return r;
+  }
+  Vec3<Q> operator()(const Vec3<Q>& v) const {
+    return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+            m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+  }
+};
+
+// X -> R X + t, applied to a cylinder (radius unchanged): the answer is unchanged exactly.
+inline Cylinder<Q> move(const Cylinder<Q>& c, const Rotation& R, const Vec3<Q>& t) { return {R(c.p0) + t, R(c.p1) + t, c.radius}; }
+inline Cylinder<Q> translate(const Cylinder<Q>& c, const Vec3<Q>& t) { return {c.p0 + t, c.p1 + t, c.radius}; }
+inline Cylinder<Q> scale(const Cylinder<Q>& c, const Q& s) { return {s * c.p0, s * c.p1, s * c.radius}; }
+inline Cylinder<Q> flip(const Cylinder<Q>& c) { return {c.p1, c.p0, c.radius}; }
+
+// An exactly touching pair with its unit contact normal n (from a to b), the expected contact
+// type, and the contact point when the contact is a single point.
+struct TouchingCase {
+  std::string name, type;
+  Cylinder<Q> a, b;
+  Vec3<Q> normal;
+  bool point_contact;
+  Point3<Q> contact;
+};
+
+// The seven base configurations (axis-aligned or with Pythagorean normals; pictures in the
+// comments are side views in the xz-plane).
+inline std::vector<TouchingCase> base_touching_cases() {
+  std::vector<TouchingCase> cases;
+  const Cylinder<Q> a{{0, 0, 0}, {0, 0, 2}, Q(1)};  // z in [0, 2], radius 1
+  const Vec3<Q> ez{0, 0, 1}, ex{1, 0, 0};
+  const Vec3<Q> n{Q(3, 5), 0, Q(4, 5)};  // unit, rational
+  const Point3<Q> P{1, 0, 2};            // a's rim point with normal n: a's support point in direction n
+  //  b on top of a, caps coplanar at z = 2, disks centred 1 apart.
+  cases.push_back({"cap-cap", "cap-cap", a, cyl({1, 0, 2}, {1, 0, 5}, 1), ez, false, {}});
+  //  b lies on a's top cap, axis along x at height 3.
+  cases.push_back({"cap-wall", "cap-wall", a, cyl({-1, 0, 3}, {1, 0, 3}, 1), ez, false, {}});
+  //  crossing axes (z and y) at distance 2, radii 1: contact at (1, 0, 0).
+  cases.push_back(
+      {"wall-wall crossing", "wall-wall", cyl({0, 0, -1}, {0, 0, 1}, 1), cyl({2, -1, 0}, {2, 1, 0}, 1), ex, true, {1, 0, 0}});
+  //  parallel axes at distance 2, overlapping in z on [1, 2]: contact along a segment.
+  cases.push_back({"wall-wall parallel", "wall-wall", a, cyl({2, 0, 1}, {2, 0, 3}, 1), ex, false, {}});
+  //  b's bottom cap (normal n) rests on a's rim at P.
+  cases.push_back({"rim-cap", "rim-cap", a, cyl(P + Vec3<Q>{0, Q(1, 2), 0}, P + Vec3<Q>{Q(6, 5), Q(1, 2), Q(8, 5)}, 1), n, true, P});
+  //  b's wall (axis (4,5,-3), orthogonal to n, through P + n) touches a's rim at P.
+  {
+    const Point3<Q> q = P + n;
+    const Vec3<Q> h{1, Q(5, 4), Q(-3, 4)};
+    cases.push_back({"rim-wall", "rim-wall", a, cyl(q - h, q + h, 1), n, true, P});
+  }
+  //  b is a reflected through P, then turned a quarter about n: rim against rim at P.
+  {
+    auto quarter = [&](const Vec3<Q>& v) { return cross(n, v) + dot(n, v) * n; };  // rotation by 90 degrees about n
+    cases.push_back({"rim-rim", "rim-rim", a, cyl(P + quarter(P - a.p0), P + quarter(P - a.p1), 1), n, true, P});
+  }
+  return cases;
+}
+
+inline TouchingCase moved(const TouchingCase& c, const Rotation& R, const Vec3<Q>& t) {
+  return {c.name, c.type, move(c.a, R, t), move(c.b, R, t), R(c.normal), c.point_contact, R(c.contact) + t};
+}
+
+// ---- independent exact checks (written apart from the library's own) --------------------------
+
+// X strictly inside (or in the closed) cylinder c, straight from the definition.
+inline int position(const Point3<Q>& X, const Cylinder<Q>& c) {  // 1 inside, 0 boundary, -1 outside
+  const Vec3<Q> A = c.p1 - c.p0, w = X - c.p0;
+  const Q s = w.x * A.x + w.y * A.y + w.z * A.z;
+  const Q AA = A.x * A.x + A.y * A.y + A.z * A.z;
+  const Q ww = w.x * w.x + w.y * w.y + w.z * w.z;
+  const Q radial = c.radius * c.radius * AA - (ww * AA - s * s);  // |w x A|^2 = |w|^2 |A|^2 - (w.A)^2
+  if (s < 0 || s > AA || radial < 0) return -1;
+  if (s == 0 || s == AA || radial == 0) return 0;
+  return 1;
+}
+
+// sign(|D.Delta| - phi(D)) in CORE::Expr with square roots (not by squaring).
+inline int separation_sign_core(const Cylinder<Q>& a, const Cylinder<Q>& b, const Vec3<Q>& D) {
+  using E = CORE::Expr;
+  auto e = [](const Q& q) { return E(CORE::BigRat(q.mpq())); };
+  const Vec3<Q> A0 = a.p1 - a.p0, A1 = b.p1 - b.p0;
+  const Vec3<Q> delta = ((b.p0 + b.p1) - (a.p0 + a.p1)) / Q(2);
+  auto absq = [](const Q& q) { return q < 0 ? Q(-q) : q; };
+  const Vec3<Q> c0 = cross(D, A0), c1 = cross(D, A1);
+  const E phi = e(absq(dot(D, A0)) / 2) + e(absq(dot(D, A1)) / 2) + e(a.radius) * CORE::sqrt(e(dot(c0, c0)) / e(dot(A0, A0))) +
+                e(b.radius) * CORE::sqrt(e(dot(c1, c1)) / e(dot(A1, A1)));
+  return CGAL::sign(e(absq(dot(D, delta))) - phi);
+}
+
+// Checks the certificate of r exactly and independently; returns "" or what is wrong.
+inline std::string certificate_error(const Cylinder<Q>& a, const Cylinder<Q>& b, const certcyl::CylinderCylinderResult& r) {
+  using certcyl::Answer;
+  switch (r.answer) {
+    case Answer::separated:
+      if (!r.direction) return "separated without a direction";
+      if (separation_sign_core(a, b, *r.direction) <= 0) return "direction does not separate";
+      if (!(r.gap_known && r.phi_lower < 1)) return "separated but phi_lower >= 1";
+      return "";
+    case Answer::overlapping:
+      if (!r.witness) return "overlapping without a witness";
+      if (position(*r.witness, a) != 1 || position(*r.witness, b) != 1) return "witness not interior to both";
+      if (r.gap_known && !(r.phi_upper > 1)) return "overlapping but phi_upper <= 1";
+      return "";
+    case Answer::touching:
+      if (!r.direction || !r.witness || !r.contact) return "touching without a contact";
+      if (separation_sign_core(a, b, *r.direction) != 0) return "contact normal does not support both";
+      if (position(*r.witness, a) < 0 || position(*r.witness, b) < 0) return "contact point not in both";
+      return "";
+    case Answer::undecided:
+      if (!r.gap_known || !(r.phi_lower <= 1 && 1 <= r.phi_upper)) return "undecided without a bound containing 1";
+      return "";
+  }
+  return "unknown answer";
+}
+
+}  // namespace cctest
