@@ -18,11 +18,6 @@
 #include "certcyl/certified/triangle_cylinder.hpp"
 #include "test_triangle_oracle.hpp"
 
-namespace certcyl {
-// Boost.Test prints the operands of failed comparisons.
-inline std::ostream& operator<<(std::ostream& os, Answer a) { return os << to_string(a); }
-}  // namespace certcyl
-
 using namespace certcyl;
 using Res = TriangleCylinderResult;
 using TF = Res::TriangleFeature;
