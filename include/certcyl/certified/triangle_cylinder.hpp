@@ -249,8 +249,10 @@ Vec3<NT> nearest_to_axis(const SlabPolygon<NT>& S, const SlabInput<NT>& in) {
     // plane's normal N has N.A != 0) at t A, t = N.a0 / N.A.
     const Vec3<NT> N = cross(Vec3<NT>(in.a[1] - in.a[0]), Vec3<NT>(in.a[2] - in.a[0]));
     const NT NA = dot(N, A);
-    if (nt::sign(NA) == CGAL::ZERO) throw std::logic_error("triangle_cylinder: pierced polygon parallel to the axis");
-    return (dot(N, in.a[0]) / NA) * A;
+    if (nt::sign(NA) != CGAL::ZERO) return (dot(N, in.a[0]) / NA) * A;
+    if constexpr (NumberTraits<NT>::is_exact) throw std::logic_error("triangle_cylinder: pierced polygon parallel to the axis");
+    // else: a rounded guess went wrong; any point of S will do as a guess.
+    return relative_point(S.p[0]);
   }
   const auto q = [&](const Vec3<NT>& x) { return squared_length(cross(x, A)); };
   Vec3<NT> best = relative_point(S.p[0]);
@@ -540,6 +542,11 @@ inline bool guessed_certificate(TriangleCylinderResult& res, const Triangle<doub
                              1.0};
   // The clipped polygon in double, with the decision's (exact) picture of where T lies: the
   // signs are recomputed in double, and a guess built on a wrong sign only fails the check.
+  // Only where double cannot overflow or underflow badly (the static stage's range).
+  double m = std::fabs(in.r);
+  for (const Vec3<double>& v : {in.a[0], in.a[1], in.a[2], in.A})
+    m = std::max({m, std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+  if (!static_scale(m)) return false;
   const SlabAxial<double> ax = slab_axial_data(in, ExactSigns{});
   const SlabPolygon<double> S = clip_to_slab(in, ax.s, ax.top, ax.lo, ax.hi);
   if (S.n == 0) return false;
