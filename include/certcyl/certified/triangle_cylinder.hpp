@@ -52,6 +52,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -198,14 +199,29 @@ inline SlabDecision decide_filtered(const Triangle<double>& T, const Cylinder<do
 inline std::optional<double> exact_binary64(const Rational& x) {
   const mpq_srcptr q = x.mpq();
   const mpz_srcptr num = mpq_numref(q), den = mpq_denref(q);
-  if (mpz_sgn(num) == 0) return 0.0;
+  if (num->_mp_size == 0) return 0.0;
+  // Fast path, reading the limbs: |num| < 2^64, den = 2^k < 2^64 (every binary64 value of
+  // magnitude in [2^-63, 2^64)). The value is num 2^-k, both factors exact in double when
+  // num has at most 53 significant bits.
+  if ((num->_mp_size == 1 || num->_mp_size == -1) && den->_mp_size == 1 && sizeof(mp_limb_t) == 8) {
+    const auto n = static_cast<std::uint64_t>(num->_mp_d[0]);
+    const auto d = static_cast<std::uint64_t>(den->_mp_d[0]);
+    if ((d & (d - 1)) != 0) return std::nullopt;  // not a power of two
+    if (64 - std::countl_zero(n) - std::countr_zero(n) > 53) return std::nullopt;
+    const int k = std::countr_zero(d);
+    const double scale = std::bit_cast<double>(static_cast<std::uint64_t>(1023 - k) << 52);  // 2^-k
+    const double magnitude = static_cast<double>(n) * scale;
+    return num->_mp_size < 0 ? -magnitude : magnitude;
+  }
   // den = 2^k, and num's significant bits fit in 53 within binary64's exponent range.
   const auto k = static_cast<long>(mpz_scan1(den, 0));
   if (static_cast<long>(mpz_sizeinbase(den, 2)) != k + 1) return std::nullopt;
   const auto low = static_cast<long>(mpz_scan1(num, 0));
   const auto high = static_cast<long>(mpz_sizeinbase(num, 2)) - 1;
   if (high - low >= 53 || low - k < -1074 || high - k > 1023) return std::nullopt;
-  return mpq_get_d(q);  // exact: the value is representable
+  // num fits in 53 significant bits, so mpz_get_d is exact, and so is the scaling by 2^-k
+  // (the lowest bit of the value is 2^(low - k) >= 2^-1074). No division (mpq_get_d divides).
+  return k == 0 ? mpz_get_d(num) : std::ldexp(mpz_get_d(num), static_cast<int>(-k));
 }
 
 template <class Primitive>
@@ -408,16 +424,14 @@ std::string check_certificate(const TriangleCylinderResult& res, const Certifica
   return "bad answer";
 }
 
-// An integer as an Mpzf, from its 64-bit limbs (each split in two exact 32-bit doubles).
+// An integer as an Mpzf. CGAL 5.5's Mpzf(const Gmpz&) copies the limbs of |z| (it drops the
+// sign and mishandles zero), so the sign and zero are handled here.
 inline CGAL::Mpzf mpz_to_mpzf(mpz_srcptr z) {
-  CGAL::Mpzf result(0);
-  const std::size_t limbs = mpz_size(z);
-  for (std::size_t i = limbs; i-- > 0;) {
-    const mp_limb_t limb = mpz_getlimbn(z, static_cast<mp_size_t>(i));
-    result = result * CGAL::Mpzf(0x1p32) + CGAL::Mpzf(static_cast<double>(limb >> 32));
-    result = result * CGAL::Mpzf(0x1p32) + CGAL::Mpzf(static_cast<double>(limb & 0xffffffffu));
-  }
-  return mpz_sgn(z) < 0 ? CGAL::Mpzf(-result) : result;
+  if (mpz_sgn(z) == 0) return CGAL::Mpzf(0);
+  CGAL::Gmpz magnitude;
+  mpz_abs(magnitude.mpz(), z);
+  const CGAL::Mpzf m(magnitude);
+  return mpz_sgn(z) < 0 ? CGAL::Mpzf(-m) : m;
 }
 
 // x as an Mpzf if it is dyadic (denominator a power of two, at most 2^1074).
@@ -551,7 +565,7 @@ inline bool guessed_certificate(TriangleCylinderResult& res, const Triangle<doub
   const SlabPolygon<double> S = clip_to_slab(in, ax.s, ax.top, ax.lo, ax.hi);
   if (S.n == 0) return false;
   const Vec3<double> x = nearest_to_axis(S, in);
-  const Vec3<M> Am = Cd.axis().map([](double v) { return M(v); });
+  const Vec3<M> Am = Vec3<M>(Cd.p1.map([](double v) { return M(v); }) - Cd.p0.map([](double v) { return M(v); }));
 
   if (res.answer == Answer::separated) {
     // n = g A.A - (g.A) A with g = X* - P in double: n.A = 0 exactly.
