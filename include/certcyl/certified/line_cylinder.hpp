@@ -34,12 +34,16 @@
 //          endpoints (the fast path; the same decision as above).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <type_traits>
+#include <utility>
 
 #include "certcyl/answer.hpp"
 #include "certcyl/certified/detail/line_shape.hpp"
+#include "certcyl/certified/detail/line_static_filter.hpp"
 #include "certcyl/certified/detail/quadratic_number.hpp"
 #include "certcyl/filtered.hpp"
 #include "certcyl/line_result.hpp"
@@ -59,11 +63,34 @@ struct CertifiedEndpoint {
   std::string exact() const { return value.to_string(); }
 };
 
+// Which stage of the filter decided: the semi-static double stage (circular cylinder, binary64
+// input), Interval_nt, or exact Gmpq.
+enum class LineStage : unsigned char { semi_static, interval, exact };
+
+inline constexpr std::string_view to_string(LineStage s) {
+  return s == LineStage::semi_static ? "semi_static" : (s == LineStage::interval ? "interval" : "exact");
+}
+
+// How many decisions each stage took.
+struct LineStageCounter {
+  std::uint64_t calls = 0, semi_static = 0, interval = 0, exact = 0;
+
+  void count(LineStage s) {
+    ++calls;
+    ++(s == LineStage::semi_static ? semi_static : (s == LineStage::interval ? interval : exact));
+  }
+  LineStageCounter& operator+=(const LineStageCounter& o) {
+    calls += o.calls, semi_static += o.semi_static, interval += o.interval, exact += o.exact;
+    return *this;
+  }
+};
+
 struct CertifiedLineResult {
   Answer answer = Answer::separated;
   LineRange range = LineRange::line;
   std::optional<CertifiedEndpoint> in, out;  // set unless separated; equal values for a point
   FilterCounter counter;                      // this query: calls = 1, exact = 1 if intervals could not decide
+  LineStage stage = LineStage::exact;         // the stage that decided
 };
 
 namespace detail {
@@ -98,16 +125,67 @@ LineQuadric<NT> line_quadric_in(const LineInput<In>& in, const Solid& solid) {
   return line_quadric(O, d, solid.map([](const In& x) { return input_to<NT>(x); }));
 }
 
+// The input as binary64 values when every number is one (a Rational with a point enclosure);
+// the whole computation then starts from doubles, which the intervals and Gmpq take exactly.
+inline bool binary64_value(const Rational& q, double& out) {
+  const auto [lo, hi] = CGAL::to_interval(q);
+  out = lo;
+  return lo == hi;
+}
+
+template <template <class> class Solid>
+std::optional<std::pair<LineInput<double>, Solid<double>>> as_binary64(const LineInput<Rational>& in, const Solid<Rational>& solid) {
+  bool exact = true;
+  auto to_double = [&](const Rational& q) {
+    double x = 0;
+    exact = exact && binary64_value(q, x);
+    return x;
+  };
+  LineInput<double> din{in.origin.map(to_double), in.second.map(to_double), in.second_is_point, in.range};
+  Solid<double> dsolid = solid.map(to_double);
+  if (!exact) return std::nullopt;
+  return std::pair{din, dsolid};
+}
+
+// The filtered decision: semi-static double stage (circular cylinders), then Interval_nt, then
+// Gmpq. Input in double (exact binary64 values) or Rational.
+template <class In, class Solid>
+LineShape certified_shape(const LineInput<In>& in, const Solid& solid, LineStage& stage) {
+  if constexpr (std::is_same_v<In, Rational>) {
+    if (const auto d = as_binary64(in, solid)) return certified_shape(d->first, d->second, stage);
+  } else if constexpr (std::is_same_v<Solid, Cylinder<double>>) {
+    StaticCircularSigns s(in.origin, in.second, in.second_is_point, solid);
+    if (s.usable()) {
+      const LineShape shape = line_shape_from(s, in.range);
+      if (!s.undecided()) {
+        stage = LineStage::semi_static;
+        return shape;
+      }
+    }
+  }
+  FilterCounter counter;
+  const LineShape shape =
+      filtered_call([&]<class NT>() { return line_shape(line_quadric_in<NT>(in, solid), in.range); }, counter);
+  stage = counter.exact != 0 ? LineStage::exact : LineStage::interval;
+  return shape;
+}
+
 template <class In, class Solid>
 LineShape certified_shape(const LineInput<In>& in, const Solid& solid, FilterCounter& counter) {
-  return filtered_call([&]<class NT>() { return line_shape(line_quadric_in<NT>(in, solid), in.range); }, counter);
+  LineStage stage{};
+  const LineShape shape = certified_shape(in, solid, stage);
+  ++counter.calls;
+  if (stage == LineStage::exact) ++counter.exact;
+  return shape;
 }
 
 template <class In, class Solid>
 CertifiedLineResult certified_result(const LineInput<In>& in, const Solid& solid) {
   CertifiedLineResult result;
   result.range = in.range;
-  const LineShape shape = certified_shape(in, solid, result.counter);
+  const LineShape shape = certified_shape(in, solid, result.stage);
+  result.counter.calls = 1;
+  result.counter.exact = result.stage == LineStage::exact ? 1 : 0;
   result.answer = shape.answer;
   if (shape.answer == Answer::separated) return result;
   const LineQuadric<Rational> q = line_quadric_in<Rational>(in, solid);
@@ -156,10 +234,18 @@ CertifiedLineResult certified_line_cylinder(const Segment<In>& seg, const Ellipt
   return detail::certified_result(detail::line_input(seg), e);
 }
 
-// The decision alone (answer and features), accumulating the filter statistics in `counter`.
+// The decision alone (answer and features), accumulating the filter statistics in `counter`
+// (calls, and exact = the decisions that needed Gmpq) or, per stage, in a LineStageCounter.
 template <class LineLike, class Solid>
 detail::LineShape certified_line_cylinder_shape(const LineLike& line, const Solid& solid, FilterCounter& counter) {
   return detail::certified_shape(detail::line_input(line), solid, counter);
+}
+template <class LineLike, class Solid>
+detail::LineShape certified_line_cylinder_shape(const LineLike& line, const Solid& solid, LineStageCounter& counter) {
+  LineStage stage{};
+  const detail::LineShape shape = detail::certified_shape(detail::line_input(line), solid, stage);
+  counter.count(stage);
+  return shape;
 }
 
 }  // namespace certcyl
