@@ -179,8 +179,24 @@ LineShape certified_shape(const LineInput<In>& in, const Solid& solid, FilterCou
   return shape;
 }
 
+// The exact quadric as rationals. From binary64 input it is computed in Mpzf (dyadic
+// integers, no normalisation per operation; line_quadric is division-free) and converted once.
+template <class In, class Solid>
+LineQuadric<Rational> exact_quadric(const LineInput<In>& in, const Solid& solid) {
+  if constexpr (std::is_same_v<In, double>) {
+    const LineQuadric<CGAL::Mpzf> m = line_quadric_in<CGAL::Mpzf>(in, solid);
+    auto q = [](const CGAL::Mpzf& x) { return static_cast<Rational>(x); };
+    return {q(m.a), q(m.b), q(m.c), q(m.disc), q(m.sw), q(m.sd), q(m.H)};
+  } else {
+    return line_quadric_in<Rational>(in, solid);
+  }
+}
+
 template <class In, class Solid>
 CertifiedLineResult certified_result(const LineInput<In>& in, const Solid& solid) {
+  if constexpr (std::is_same_v<In, Rational>) {
+    if (const auto d = as_binary64(in, solid)) return certified_result(d->first, d->second);
+  }
   CertifiedLineResult result;
   result.range = in.range;
   const LineShape shape = certified_shape(in, solid, result.stage);
@@ -188,10 +204,11 @@ CertifiedLineResult certified_result(const LineInput<In>& in, const Solid& solid
   result.counter.exact = result.stage == LineStage::exact ? 1 : 0;
   result.answer = shape.answer;
   if (shape.answer == Answer::separated) return result;
-  const LineQuadric<Rational> q = line_quadric_in<Rational>(in, solid);
+  const LineQuadric<Rational> q = exact_quadric(in, solid);
+  BoundValuesExact value(q, shape.tube);
   auto endpoint = [&](BoundKind k, LineFeature feature, LineFeature surface) {
     CertifiedEndpoint e;
-    e.value = bound_value(k, q, shape.tube);
+    e.value = value(k);
     e.nearest = nearest_double(e.value);
     e.feature = feature;
     e.surface = surface;

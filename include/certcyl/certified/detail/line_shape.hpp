@@ -23,6 +23,7 @@
 // on the wall), sw in {0, H} with sd = 0 (line in a cap plane).
 #pragma once
 
+#include <optional>
 #include <stdexcept>
 #include <type_traits>
 
@@ -268,22 +269,43 @@ LineShape line_shape(const LineQuadric<NT>& q, LineRange range) {
   return line_shape_from(s, range);
 }
 
-// The exact value of a bound (q in Gmpq, the shape decided for it).
-inline QuadraticNumber bound_value(BoundKind k, const LineQuadric<Rational>& q, TubeState tube) {
-  switch (k) {
-    case BoundKind::tube_lo:
-    case BoundKind::tube_hi: {
-      const Rational centre = -q.b / q.a;
-      if (tube == TubeState::point) return {centre, 0, 0};
-      const Rational half = Rational(1) / q.a;
-      return QuadraticNumber::make(centre, k == BoundKind::tube_lo ? Rational(-half) : half, q.disc);
+// The exact values of the bounds (q in Gmpq, the shape decided for it). The two tube roots
+// share their normal form: it is made once, for the upper root, and negated for the lower.
+class BoundValuesExact {
+ public:
+  BoundValuesExact(const LineQuadric<Rational>& q, TubeState tube) : q_(q), tube_(tube) {}
+
+  QuadraticNumber operator()(BoundKind k) {
+    switch (k) {
+      case BoundKind::tube_lo:
+      case BoundKind::tube_hi: {
+        if (!root_) {
+          centre_ = -q_.b / q_.a;
+          root_ = tube_ == TubeState::point ? QuadraticNumber{centre_, 0, 0}
+                                            : QuadraticNumber::make(centre_, Rational(1) / q_.a, q_.disc);
+        }
+        if (k == BoundKind::tube_hi || tube_ == TubeState::point) return *root_;
+        // else: the lower root; a perfect-square radicand has made the upper one rational
+        if (root_->is_rational()) return QuadraticNumber::make(centre_, Rational(-1) / q_.a, q_.disc);
+        return {root_->alpha, Rational(-root_->beta), root_->gamma};
+      }
+      case BoundKind::cap0: return {Rational(-q_.sw / q_.sd), 0, 0};
+      case BoundKind::cap1: return {Rational((q_.H - q_.sw) / q_.sd), 0, 0};
+      case BoundKind::range_lo: return {0, 0, 0};
+      case BoundKind::range_hi: return {1, 0, 0};
     }
-    case BoundKind::cap0: return {Rational(-q.sw / q.sd), 0, 0};
-    case BoundKind::cap1: return {Rational((q.H - q.sw) / q.sd), 0, 0};
-    case BoundKind::range_lo: return {0, 0, 0};
-    case BoundKind::range_hi: return {1, 0, 0};
+    return {};
   }
-  return {};
+
+ private:
+  const LineQuadric<Rational>& q_;
+  TubeState tube_;
+  std::optional<QuadraticNumber> root_;  // the upper root
+  Rational centre_;
+};
+
+inline QuadraticNumber bound_value(BoundKind k, const LineQuadric<Rational>& q, TubeState tube) {
+  return BoundValuesExact(q, tube)(k);
 }
 
 }  // namespace certcyl::detail
