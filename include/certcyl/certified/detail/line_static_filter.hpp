@@ -217,6 +217,9 @@ class StaticCircularSigns {
   bool usable() const { return usable_; }
   bool undecided() const { return undecided_; }
 
+  // B = fl(fl(C mlen^i) mdir^j) of the header comment, for this input's magnitudes.
+  double bound(const StaticBound& b) const { return b.C * len_pow_[b.deg_len] * dir_pow_[b.deg_dir]; }
+
   // Step 1 and 2 signs of line_shape.
   CGAL::Sign sign_a() { return cached(kA, [&] { return decide(P::a(A_, d_), static_bounds::a); }); }
   CGAL::Sign sign_disc() { return cached(kDisc, [&] { return decide(P::disc(A_, w_, d_, r_), static_bounds::disc); }); }
@@ -256,7 +259,7 @@ class StaticCircularSigns {
   static bool is_tube(BoundKind k) { return k == BoundKind::tube_lo || k == BoundKind::tube_hi; }
 
   CGAL::Sign decide(double v, const StaticBound& b) {
-    const double bound = b.C * len_pow_[b.deg_len] * dir_pow_[b.deg_dir];
+    const double bound = this->bound(b);
     if (v > bound) return CGAL::POSITIVE;
     if (v < -bound) return CGAL::NEGATIVE;
     undecided_ = true;  // else: |v| within the error bound; the result below is never used
