@@ -341,3 +341,26 @@ BOOST_AUTO_TEST_CASE(filtered_equals_exact_on_random_and_near_degenerate) {
   BOOST_TEST(by_kind[0].semi_static > by_kind[0].calls * 9 / 10);
   BOOST_TEST(static_checked > 4000);
 }
+
+// Rational input is recognised as binary64 exactly when it is one (then the double path runs).
+BOOST_AUTO_TEST_CASE(binary64_recognition) {
+  double x = 0;
+  const Q two(2);
+  auto pow2 = [&](int k) {
+    Q p(1);
+    for (int i = 0; i < std::abs(k); ++i) p = k > 0 ? Q(p * two) : Q(p / two);
+    return p;
+  };
+  BOOST_TEST(binary64_value(Q(0), x));
+  BOOST_TEST(x == 0.0);
+  BOOST_TEST((binary64_value(pow2(-1074), x) && x == 0x1p-1074));            // smallest subnormal
+  BOOST_TEST((binary64_value(Q(-3) * pow2(-1074), x) && x == -0x3p-1074));   // negative subnormal
+  BOOST_TEST(!binary64_value(pow2(-1075), x));                               // half of it
+  BOOST_TEST((binary64_value(pow2(53) - Q(1), x) && x == 0x1.fffffffffffffp+52));
+  BOOST_TEST(!binary64_value(pow2(53) + Q(1), x));                           // 54 significant bits
+  BOOST_TEST((binary64_value((pow2(53) - Q(1)) * pow2(971), x) && x == 0x1.fffffffffffffp+1023));  // DBL_MAX
+  BOOST_TEST(!binary64_value(pow2(1024), x));
+  BOOST_TEST(!binary64_value(parse_rational("0.1"), x));
+  BOOST_TEST(!binary64_value(Q(1) / Q(3), x));
+  BOOST_TEST((binary64_value(parse_rational("-2.5"), x) && x == -2.5));
+}

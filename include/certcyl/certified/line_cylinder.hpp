@@ -34,6 +34,7 @@
 //          endpoints (the fast path; the same decision as above).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -125,12 +126,26 @@ LineQuadric<NT> line_quadric_in(const LineInput<In>& in, const Solid& solid) {
   return line_quadric(O, d, solid.map([](const In& x) { return input_to<NT>(x); }));
 }
 
-// The input as binary64 values when every number is one (a Rational with a point enclosure);
-// the whole computation then starts from doubles, which the intervals and Gmpq take exactly.
+// The input as binary64 values when every number is one; the whole computation then starts
+// from doubles, which the intervals, Mpzf and Gmpq take exactly. q = m 2^e with m odd is a
+// binary64 value iff m has at most 53 bits, e >= -1074 and m 2^e < 2^1024 (for m < 2^53 and
+// e >= -1074, m 2^e is a normal or a subnormal double).
 inline bool binary64_value(const Rational& q, double& out) {
-  const auto [lo, hi] = CGAL::to_interval(q);
-  out = lo;
-  return lo == hi;
+  const mpz_srcptr num = mpq_numref(q.mpq()), den = mpq_denref(q.mpq());
+  if (mpz_sgn(num) == 0) {
+    out = 0;
+    return true;
+  }
+  const auto den_shift = mpz_scan1(den, 0);
+  if (mpz_sizeinbase(den, 2) != den_shift + 1) return false;  // the denominator is not 2^k
+  const auto low = mpz_scan1(num, 0), bits = mpz_sizeinbase(num, 2);
+  if (bits - low > 53) return false;
+  const long e = static_cast<long>(low) - static_cast<long>(den_shift);
+  if (e < -1074 || e + static_cast<long>(bits - low) > 1024) return false;
+  CGAL::Gmpz m;
+  mpz_tdiv_q_2exp(m.mpz(), num, low);
+  out = std::ldexp(mpz_get_d(m.mpz()), static_cast<int>(e));  // m exact in double, then scaled exactly
+  return true;
 }
 
 template <template <class> class Solid>
