@@ -17,9 +17,15 @@
 // Method (design note, sections 3 and 5): the division-free quadratic of the tube with its
 // cancellation-free discriminant, the slab of the caps, and a sign skeleton that decides
 // every comparison of symbolic bounds by the sign of p + q sqrt(disc)
-// (certified/detail/line_shape.hpp). Filtered: the skeleton runs in Interval_nt first and in
-// Gmpq only where an interval sign is undecided (ties, tangencies, on-boundary cases, near
-// misses); `FilterCounter` records the fall-backs.
+// (certified/detail/line_shape.hpp). Filtered in three stages: for a circular cylinder with
+// binary64 input, the semi-static double stage (certified/detail/line_static_filter.hpp:
+// division-free decision polynomials of degree <= 6 with proved forward error bounds); then
+// the skeleton in Interval_nt; then in Gmpq where an interval sign is undecided (ties,
+// tangencies, on-boundary cases, near misses). Rational input whose numbers are all binary64
+// values takes the double path. `FilterCounter` records the Gmpq fall-backs,
+// `LineStageCounter` / `CertifiedLineResult::stage` the stage that decided.
+// Exact endpoints: the quadric in Mpzf from binary64 input (Gmpq otherwise), one Gmpq
+// normalisation per endpoint, the nearest double from an MPFR enclosure.
 //
 // Inputs: exact Rational primitives (the command's input) or double primitives (each double
 // is taken as the exact binary64 value it holds, so the answer is the exact one for those
@@ -31,7 +37,8 @@
 //       -> CertifiedLineResult: answer, endpoints (exact, nearest double, features), counter
 //   certified_line_cylinder_shape(line | ray | segment, cylinder | elliptic cylinder, counter)
 //       -> detail::LineShape: the answer and the features without building the exact
-//          endpoints (the fast path; the same decision as above).
+//          endpoints (the fast path; the same decision as above). counter: FilterCounter or
+//          LineStageCounter (decisions per stage).
 #pragma once
 
 #include <cmath>
@@ -142,9 +149,14 @@ inline bool binary64_value(const Rational& q, double& out) {
   if (bits - low > 53) return false;
   const long e = static_cast<long>(low) - static_cast<long>(den_shift);
   if (e < -1074 || e + static_cast<long>(bits - low) > 1024) return false;
-  CGAL::Gmpz m;
-  mpz_tdiv_q_2exp(m.mpz(), num, low);
-  out = std::ldexp(mpz_get_d(m.mpz()), static_cast<int>(e));  // m exact in double, then scaled exactly
+  // m = |num| >> low fits in 53 bits: read it from the (at most two) limbs it spans.
+  static_assert(GMP_NUMB_BITS == 64, "64-bit limbs");
+  const auto limb = static_cast<mp_size_t>(low / 64);
+  const unsigned shift = low % 64;
+  std::uint64_t m = mpz_getlimbn(num, limb) >> shift;
+  if (shift != 0 && limb + 1 < static_cast<mp_size_t>(mpz_size(num))) m |= mpz_getlimbn(num, limb + 1) << (64 - shift);
+  const double magnitude = std::ldexp(static_cast<double>(m), static_cast<int>(e));  // both steps exact
+  out = mpz_sgn(num) < 0 ? -magnitude : magnitude;
   return true;
 }
 
