@@ -75,6 +75,30 @@ decltype(auto) with_interval_rounding(F&& f) {
   return std::forward<F>(f)();
 }
 
+// What a number type needs around its use, as one RAII object: upward rounding for
+// Interval_nt<false>, a precision for Gmpfr (`bits`, default 53), nothing for the others.
+template <class NT>
+class NumberScope {
+ public:
+  explicit NumberScope(long /*bits*/ = 53) {}
+};
+template <>
+class NumberScope<CGAL::Interval_nt<false>> {
+ public:
+  explicit NumberScope(long /*bits*/ = 53) {}
+
+ private:
+  CGAL::Protect_FPU_rounding<true> protect_;
+};
+template <>
+class NumberScope<CGAL::Gmpfr> {
+ public:
+  explicit NumberScope(long bits = 53) : precision_(bits) {}
+
+ private:
+  GmpfrPrecision precision_;
+};
+
 // The primary template is left undefined: using an unsupported type fails to compile here.
 template <class NT>
 struct NumberTraits;
@@ -215,28 +239,28 @@ CGAL::Comparison_result compare(const NT& a, const NT& b) {
 
 template <class NT>
 bool is_zero(const NT& x) {
-  return sign(x) == CGAL::ZERO;
+  return nt::sign(x) == CGAL::ZERO;
 }
 template <class NT>
 bool is_positive(const NT& x) {
-  return sign(x) == CGAL::POSITIVE;
+  return nt::sign(x) == CGAL::POSITIVE;
 }
 template <class NT>
 bool is_negative(const NT& x) {
-  return sign(x) == CGAL::NEGATIVE;
+  return nt::sign(x) == CGAL::NEGATIVE;
 }
 
 template <class NT>
 NT abs(const NT& x) {
-  return is_negative(x) ? NT(-x) : x;
+  return nt::is_negative(x) ? NT(-x) : x;
 }
 template <class NT>
 const NT& min(const NT& a, const NT& b) {
-  return compare(b, a) == CGAL::SMALLER ? b : a;
+  return nt::compare(b, a) == CGAL::SMALLER ? b : a;
 }
 template <class NT>
 const NT& max(const NT& a, const NT& b) {
-  return compare(a, b) == CGAL::SMALLER ? b : a;
+  return nt::compare(a, b) == CGAL::SMALLER ? b : a;
 }
 
 template <class NT>
