@@ -223,6 +223,36 @@ bool less_equal_zero(const X& x) { auto s = sign_of(x); return s && *s != CGAL::
 template <class X>
 bool greater_equal_zero(const X& x) { auto s = sign_of(x); return s && *s != CGAL::NEGATIVE; }
 
+// The type of the search parameters (t of the quarter circles; s, t, the line direction and
+// the line parameter r of the 2-D minimiser). For double, long double and Gmpfr it is NT, so
+// they run the seed's code literally. For CORE::Expr and Interval_nt it is Rational: every
+// iterate computed in NT from the previous one would make CORE::Expr's expression DAG grow
+// with each step (a deep DAG of square roots makes every later comparison slow), and would
+// widen intervals step after step. The parameters only choose WHERE f is evaluated; every
+// judged value is still computed in NT at that point. Bisection points are dyadic, hence the
+// same in every type (up to binary64's 53 bits); the 2-D line direction, a heuristic, is
+// rounded to binary64 for these two types.
+template <class NT>
+using EberlyParam = std::conditional_t<NumberTraits<NT>::is_exact || std::is_same_v<NT, Interval>, Rational, NT>;
+
+template <class NT, class P>
+NT param_to_nt(const P& x) {
+  if constexpr (std::is_same_v<P, NT>) {
+    return x;
+  } else {
+    return nt::from_rational<NT>(x);
+  }
+}
+
+template <class NT>
+EberlyParam<NT> nt_to_param(const NT& x) {
+  if constexpr (std::is_same_v<EberlyParam<NT>, NT>) {
+    return x;
+  } else {
+    return Rational(nt::to_double(x));
+  }
+}
+
 template <class NT>
 Vec3<NT> zero_vector() {
   return {nt::constant<NT>(0), nt::constant<NT>(0), nt::constant<NT>(0)};

@@ -150,22 +150,23 @@ enum class Edge { none, s_zero, t_zero, hypotenuse };
 
 template <class NT>
 class OctantMinimiser {
+  using P = EberlyParam<NT>;  // s, t, the line direction and r (see eberly_common.hpp)
+
  public:
   OctantMinimiser(EberlyRun<NT>& run, const OctantFrame<NT>& g) : run_(run), g_(g) {}
 
   // Returns true when a separating direction was found.
   bool minimise() {
-    const NT third = nt::constant<NT>(1) / nt::constant<NT>(3);
+    const P third = nt::constant<P>(1) / nt::constant<P>(3);
     s_ = third;
     t_ = third;
-    G_ = eberly_G(s_, t_, g_, clamp(), k());
+    G_ = G(s_, t_);
     if (judge(G_, s_, t_)) return true;
     for (int n = 0; n < run_.params.max_line_searches; ++n) {
       // The line direction: projected negative gradient.
-      const auto grad = eberly_GDer(s_, t_, g_, run_.corrected(), k());
-      if (!grad) return false;  // as written: undefined gradient, the search ends
-      NT d0 = -(*grad)[0], d1 = -(*grad)[1];
-      if (is_nan(d0) || is_nan(d1)) return false;
+      const auto grad = eberly_GDer(nt_(s_), nt_(t_), g_, run_.corrected(), k());
+      if (!grad || is_nan((*grad)[0]) || is_nan((*grad)[1])) return false;  // as written: undefined gradient
+      P d0 = nt_to_param(NT(-(*grad)[0])), d1 = nt_to_param(NT(-(*grad)[1]));
       project(d0, d1);
       if (nt::is_zero(d0) && nt::is_zero(d1)) return false;
       const NT G_prev = G_;
@@ -183,93 +184,97 @@ class OctantMinimiser {
  private:
   bool clamp() const { return run_.corrected(); }
   EberlyCounters& k() { return run_.result.counters; }
+  static NT nt_(const P& x) { return param_to_nt<NT>(x); }
+  NT G(const P& s, const P& t) { return eberly_G(nt_(s), nt_(t), g_, clamp(), k()); }
 
-  bool judge(const NT& G, const NT& s, const NT& t) {
+  bool judge(const NT& value, const P& s, const P& t) {
     const OctantFrame<NT>& g = g_;
-    return run_.judge(G, run_.params.other_direction_tests, EberlyTest::other_directions,
-                      [&g, s, t] { return s * g.U + t * g.V + NT(nt::constant<NT>(1) - s - t) * g.W; });
+    return run_.judge(value, run_.params.other_direction_tests, EberlyTest::other_directions, [&g, s, t] {
+      const NT sn = nt_(s), tn = nt_(t);
+      return sn * g.U + tn * g.V + NT(nt::constant<NT>(1) - sn - tn) * g.W;
+    });
   }
 
   // Removes the components of (d0, d1) that leave the triangle through an active edge.
-  void project(NT& d0, NT& d1) const {
-    const NT zero = nt::constant<NT>(0);
+  void project(P& d0, P& d1) const {
+    const P zero = nt::constant<P>(0);
     const bool on_s = nt::is_zero(s_), on_t = nt::is_zero(t_);
-    const bool on_h = nt::is_zero(NT(nt::constant<NT>(1) - s_ - t_));
+    const bool on_h = nt::is_zero(P(nt::constant<P>(1) - s_ - t_));
     if (on_s && nt::is_negative(d0)) d0 = zero;
     if (on_t && nt::is_negative(d1)) d1 = zero;
-    if (on_h && nt::is_positive(NT(d0 + d1))) {
-      const NT m = (d0 + d1) / nt::constant<NT>(2);
+    if (on_h && nt::is_positive(P(d0 + d1))) {
+      const P m = (d0 + d1) / nt::constant<P>(2);
       d0 = d0 - m;
       d1 = d1 - m;
       if ((on_s && nt::is_negative(d0)) || (on_t && nt::is_negative(d1))) d0 = d1 = zero;
     }
   }
 
-  // gamma'(r) at the point, as the variant computes it: side +1 right, -1 left, 0 at a
-  // bisection midpoint (as written: the seed's d . GDer for all three).
-  // Returns the sign, or nullopt when undefined; for side 0 in the corrected variant returns
-  // POSITIVE / NEGATIVE when the minimum lies left / right, ZERO when the point is the minimum.
-  std::optional<CGAL::Sign> derivative_sign(const NT& s, const NT& t, const NT& d0, const NT& d1, int side) {
+  // The sign of gamma' at (s, t) along d, as the variant computes it: side +1 from the right,
+  // -1 from the left, 0 at a bisection midpoint (as written: d . GDer for all three, nullopt
+  // when undefined). Corrected, at a midpoint: NEGATIVE when the right derivative is < 0 (the
+  // minimum lies right), POSITIVE when the left derivative is > 0, ZERO otherwise (minimum).
+  std::optional<NT> derivative_sign(const P& s, const P& t, const P& d0, const P& d1, int side) {
+    const NT sn = nt_(s), tn = nt_(t), d0n = nt_(d0), d1n = nt_(d1);
     if (!run_.corrected()) {
-      const auto grad = eberly_GDer(s, t, g_, false, k());
+      const auto grad = eberly_GDer(sn, tn, g_, false, k());
       if (!grad) return std::nullopt;
-      return sign_of(NT(d0 * (*grad)[0] + d1 * (*grad)[1]));
+      const NT value = d0n * (*grad)[0] + d1n * (*grad)[1];
+      const auto sg = sign_of(value);
+      if (!sg) return std::nullopt;
+      return sign_as_number<NT>(*sg);
     }
-    if (side != 0) return nt::sign(one_sided_derivative(s, t, d0, d1, side, g_, k()));
-    const CGAL::Sign right = nt::sign(one_sided_derivative(s, t, d0, d1, +1, g_, k()));
-    if (right == CGAL::NEGATIVE) return CGAL::NEGATIVE;
-    const CGAL::Sign left = nt::sign(one_sided_derivative(s, t, d0, d1, -1, g_, k()));
-    if (left == CGAL::POSITIVE) return CGAL::POSITIVE;
-    return CGAL::ZERO;
+    if (side != 0) return sign_as_number<NT>(nt::sign(one_sided_derivative(sn, tn, d0n, d1n, side, g_, k())));
+    if (nt::is_negative(one_sided_derivative(sn, tn, d0n, d1n, +1, g_, k()))) return sign_as_number<NT>(CGAL::NEGATIVE);
+    if (nt::is_positive(one_sided_derivative(sn, tn, d0n, d1n, -1, g_, k()))) return sign_as_number<NT>(CGAL::POSITIVE);
+    return sign_as_number<NT>(CGAL::ZERO);
   }
 
   // Minimises gamma(r) = G((s,t) + r d) on [0, r_max]. Returns +1 separated, -1 when
   // gamma'(0) >= 0 (no progress), 0 after moving to the line's minimum (s_, t_, G_ updated;
   // `hit` is the edge when the minimum is at r_max).
-  int line_search(const NT& s, const NT& t, const NT& d0, const NT& d1, Edge& hit) {
+  int line_search(const P& s, const P& t, const P& d0, const P& d1, Edge& hit) {
     ++k().line_searches;
-    const NT zero = nt::constant<NT>(0);
-    const NT omsmt = nt::constant<NT>(1) - s - t;
+    const P zero = nt::constant<P>(0);
+    const P omsmt = nt::constant<P>(1) - s - t;
     // r_max: where the line leaves the triangle, and through which edge.
-    std::optional<NT> rmax;
+    std::optional<P> rmax;
     Edge edge = Edge::none;
-    auto consider = [&](const NT& r, Edge e) {
+    auto consider = [&](const P& r, Edge e) {
       if (!rmax || nt::compare(r, *rmax) == CGAL::SMALLER) rmax = r, edge = e;
     };
-    if (nt::is_negative(d0)) consider(NT(-s / d0), Edge::s_zero);
-    if (nt::is_negative(d1)) consider(NT(-t / d1), Edge::t_zero);
-    if (nt::is_positive(NT(d0 + d1))) consider(NT(omsmt / (d0 + d1)), Edge::hypotenuse);
+    if (nt::is_negative(d0)) consider(P(-s / d0), Edge::s_zero);
+    if (nt::is_negative(d1)) consider(P(-t / d1), Edge::t_zero);
+    if (nt::is_positive(P(d0 + d1))) consider(P(omsmt / (d0 + d1)), Edge::hypotenuse);
     if (!rmax) return -1;  // unreachable for a nonzero d in the triangle
-    auto point = [&](const NT& r, NT& ps, NT& pt) {
+    auto point = [&](const P& r, P& ps, P& pt) {
       ps = s + r * d0;
       pt = t + r * d1;
     };
-    auto snap = [&](NT& ps, NT& pt) {
-      if (edge == Edge::s_zero) ps = zero;
-      if (edge == Edge::t_zero) pt = zero;
-      if (edge == Edge::hypotenuse) pt = nt::constant<NT>(1) - ps;
-    };
-    NT se, te;
+    P se, te;
     point(*rmax, se, te);
-    snap(se, te);
-    const NT Gend = eberly_G(se, te, g_, clamp(), k());
+    // The end lies on the edge exactly.
+    if (edge == Edge::s_zero) se = zero;
+    if (edge == Edge::t_zero) te = zero;
+    if (edge == Edge::hypotenuse) te = nt::constant<P>(1) - se;
+    const NT Gend = G(se, te);
     if (judge(Gend, se, te)) return 1;
-    if (greater_equal_zero(derivative_sign_value(s, t, d0, d1, +1))) return -1;
-    if (less_equal_zero(derivative_sign_value(se, te, d0, d1, -1))) {
+    if (greater_equal_zero(derivative_sign(s, t, d0, d1, +1))) return -1;
+    if (less_equal_zero(derivative_sign(se, te, d0, d1, -1))) {
       s_ = se, t_ = te, G_ = Gend, hit = edge;
       return 0;
     }
-    NT r0 = zero, r1 = *rmax;
-    const NT two = nt::constant<NT>(2);
+    P r0 = zero, r1 = *rmax;
+    const P two = nt::constant<P>(2);
     bool moved = false;
     for (int i = 0; i < run_.params.line_search_bisections; ++i) {
-      const NT rmid = (r0 + r1) / two;
-      NT sm, tm;
+      const P rmid = (r0 + r1) / two;
+      P sm, tm;
       point(rmid, sm, tm);
-      const NT Gmid = eberly_G(sm, tm, g_, clamp(), k());
+      const NT Gmid = G(sm, tm);
       if (judge(Gmid, sm, tm)) return 1;
       s_ = sm, t_ = tm, G_ = Gmid, moved = true;
-      const auto dm = derivative_sign_value(sm, tm, d0, d1, 0);
+      const auto dm = derivative_sign(sm, tm, d0, d1, 0);
       if (greater_zero(dm)) {
         r1 = rmid;
       } else if (less_zero(dm)) {
@@ -281,31 +286,25 @@ class OctantMinimiser {
     return moved ? 0 : -1;
   }
 
-  // derivative_sign as a number type value (+1, 0, -1) or NaN-like nullopt.
-  std::optional<NT> derivative_sign_value(const NT& s, const NT& t, const NT& d0, const NT& d1, int side) {
-    const auto sg = derivative_sign(s, t, d0, d1, side);
-    if (!sg) return std::nullopt;
-    return sign_as_number<NT>(*sg);
-  }
-
   // As written: one line search along the whole edge the last line search ended on.
   bool search_edge(Edge e) {
-    const NT zero = nt::constant<NT>(0), one = nt::constant<NT>(1);
-    NT s = zero, t = zero, d0 = zero, d1 = zero;
+    const P zero = nt::constant<P>(0), one = nt::constant<P>(1);
+    P s = zero, t = zero, d0 = zero, d1 = zero;
     switch (e) {
-      case Edge::s_zero: d1 = one; break;                    // (0,0) -> (0,1)
-      case Edge::t_zero: d0 = one; break;                    // (0,0) -> (1,0)
+      case Edge::s_zero: d1 = one; break;                          // (0,0) -> (0,1)
+      case Edge::t_zero: d0 = one; break;                          // (0,0) -> (1,0)
       case Edge::hypotenuse: s = one, d0 = -one, d1 = one; break;  // (1,0) -> (0,1)
       case Edge::none: return false;
     }
-    if (judge(eberly_G(s, t, g_, clamp(), k()), s, t)) return true;
+    if (judge(G(s, t), s, t)) return true;
     Edge hit = Edge::none;
     return line_search(s, t, d0, d1, hit) > 0;
   }
 
   EberlyRun<NT>& run_;
   const OctantFrame<NT>& g_;
-  NT s_, t_, G_;
+  P s_, t_;
+  NT G_;
   NT min_decrease_ = nt::from_rational<NT>(Rational(run_.params.min_relative_decrease));
 };
 

@@ -114,19 +114,24 @@ int quarter_as_written(EberlyRun<NT>& run, const PerpendicularFrame<NT>& q, cons
                        EberlyTest test) {
   EberlyCounters& k = run.result.counters;
   const Strictness st = run.params.perpendicular_tests;
-  const NT zero = nt::constant<NT>(0), one = nt::constant<NT>(1), two = nt::constant<NT>(2);
-  auto at = [&](const NT& t) { return [&q, t, negated_u0] { return perpendicular_direction(q, t, negated_u0); }; };
+  using P = EberlyParam<NT>;
+  const P zero = nt::constant<P>(0), one = nt::constant<P>(1), two = nt::constant<P>(2);
+  auto at = [&](const P& t) {
+    return [&q, t, negated_u0] { return perpendicular_direction(q, param_to_nt<NT>(t), negated_u0); };
+  };
+  auto F = [&](const P& t) { return eberly_F(param_to_nt<NT>(t), q, a2, k); };
+  auto FDer = [&](const P& t) { return eberly_FDer(param_to_nt<NT>(t), q, a2, std::nullopt, false, k); };
 
-  if (run.judge(eberly_F(zero, q, a2, k), st, test, at(zero))) return 1;
-  if (run.judge(eberly_F(one, q, a2, k), st, test, at(one))) return 1;
-  if (greater_equal_zero(eberly_FDer(zero, q, a2, std::nullopt, false, k))) return -1;
-  if (less_equal_zero(eberly_FDer(one, q, a2, std::nullopt, false, k))) return -1;
+  if (run.judge(F(zero), st, test, at(zero))) return 1;
+  if (run.judge(F(one), st, test, at(one))) return 1;
+  if (greater_equal_zero(FDer(zero))) return -1;
+  if (less_equal_zero(FDer(one))) return -1;
 
-  NT t0 = zero, t1 = one;
+  P t0 = zero, t1 = one;
   for (int i = 0; i < run.params.perpendicular_bisections; ++i) {
-    const NT tmid = (t0 + t1) / two;
-    if (run.judge(eberly_F(tmid, q, a2, k), st, test, at(tmid))) return 1;
-    const auto fdmid = eberly_FDer(tmid, q, a2, std::nullopt, false, k);
+    const P tmid = (t0 + t1) / two;
+    if (run.judge(F(tmid), st, test, at(tmid))) return 1;
+    const auto fdmid = FDer(tmid);
     if (greater_zero(fdmid)) {
       t1 = tmid;
     } else if (less_zero(fdmid)) {
@@ -142,23 +147,31 @@ int quarter_as_written(EberlyRun<NT>& run, const PerpendicularFrame<NT>& q, cons
 // (1-t) a2 + t b2 has the constant sign `piece_sign`. Returns true when separated.
 template <class NT>
 bool piece_corrected(EberlyRun<NT>& run, const PerpendicularFrame<NT>& q, const NT& a2, bool negated_u0,
-                     const NT& lo, const NT& hi, bool hi_is_one, CGAL::Sign piece_sign, EberlyTest test) {
+                     const EberlyParam<NT>& lo, const EberlyParam<NT>& hi, bool hi_is_one, CGAL::Sign piece_sign,
+                     EberlyTest test) {
+  using P = EberlyParam<NT>;
   EberlyCounters& k = run.result.counters;
   const Strictness st = run.params.perpendicular_tests;
-  const NT two = nt::constant<NT>(2);
-  auto at = [&](const NT& t) { return [&q, t, negated_u0] { return perpendicular_direction(q, t, negated_u0); }; };
+  const P two = nt::constant<P>(2);
+  auto at = [&](const P& t) {
+    return [&q, t, negated_u0] { return perpendicular_direction(q, param_to_nt<NT>(t), negated_u0); };
+  };
+  auto F = [&](const P& t) { return eberly_F(param_to_nt<NT>(t), q, a2, k); };
+  auto FDer = [&](const P& t, bool left_at_one) {
+    return eberly_FDer(param_to_nt<NT>(t), q, a2, piece_sign, left_at_one, k);
+  };
 
-  if (run.judge(eberly_F(lo, q, a2, k), st, test, at(lo))) return true;
-  if (run.judge(eberly_F(hi, q, a2, k), st, test, at(hi))) return true;
+  if (run.judge(F(lo), st, test, at(lo))) return true;
+  if (run.judge(F(hi), st, test, at(hi))) return true;
   // The derivatives at the ends are the one-sided ones into the piece.
-  if (greater_equal_zero(eberly_FDer(lo, q, a2, piece_sign, false, k))) return false;
-  if (less_equal_zero(eberly_FDer(hi, q, a2, piece_sign, hi_is_one, k))) return false;
+  if (greater_equal_zero(FDer(lo, false))) return false;
+  if (less_equal_zero(FDer(hi, hi_is_one))) return false;
 
-  NT t0 = lo, t1 = hi;
+  P t0 = lo, t1 = hi;
   for (int i = 0; i < run.params.perpendicular_bisections; ++i) {
-    const NT tmid = (t0 + t1) / two;
-    if (run.judge(eberly_F(tmid, q, a2, k), st, test, at(tmid))) return true;
-    const auto fdmid = eberly_FDer(tmid, q, a2, piece_sign, false, k);
+    const P tmid = (t0 + t1) / two;
+    if (run.judge(F(tmid), st, test, at(tmid))) return true;
+    const auto fdmid = FDer(tmid, false);
     if (greater_zero(fdmid)) {
       t1 = tmid;
     } else if (less_zero(fdmid)) {
@@ -174,10 +187,13 @@ bool piece_corrected(EberlyRun<NT>& run, const PerpendicularFrame<NT>& q, const 
 template <class NT>
 bool quarter_corrected(EberlyRun<NT>& run, const PerpendicularFrame<NT>& q, const NT& a2, bool negated_u0,
                        EberlyTest test) {
-  const NT zero = nt::constant<NT>(0), one = nt::constant<NT>(1);
+  using P = EberlyParam<NT>;
+  const P zero = nt::constant<P>(0), one = nt::constant<P>(1);
   const CGAL::Sign sa = nt::sign(a2), sb = nt::sign(q.b2);
   if (sa != CGAL::ZERO && sb != CGAL::ZERO && sa != sb) {
-    const NT tstar = a2 / (a2 - q.b2);
+    // t* in the parameter type: rounded to binary64 for CORE::Expr and intervals, so the
+    // pieces may overlap the kink by an ulp; F is still judged exactly at every point.
+    const P tstar = nt_to_param(NT(a2 / (a2 - q.b2)));
     if (piece_corrected(run, q, a2, negated_u0, zero, tstar, false, sa, test)) return true;
     return piece_corrected(run, q, a2, negated_u0, tstar, one, true, sb, test);
   }
