@@ -147,8 +147,9 @@ int quarter_as_written(EberlyRun<NT>& run, const PerpendicularFrame<NT>& q, cons
 // (1-t) a2 + t b2 has the constant sign `piece_sign`. Returns true when separated.
 template <class NT>
 bool piece_corrected(EberlyRun<NT>& run, const PerpendicularFrame<NT>& q, const NT& a2, bool negated_u0,
-                     const EberlyParam<NT>& lo, const EberlyParam<NT>& hi, bool hi_is_one, CGAL::Sign piece_sign,
-                     EberlyTest test) {
+                     const EberlyParam<NT>& lo, const EberlyParam<NT>& hi, bool lo_is_kink, bool hi_is_kink,
+                     CGAL::Sign piece_sign, EberlyTest test) {
+  const bool hi_is_one = !hi_is_kink;
   using P = EberlyParam<NT>;
   EberlyCounters& k = run.result.counters;
   const Strictness st = run.params.perpendicular_tests;
@@ -161,8 +162,9 @@ bool piece_corrected(EberlyRun<NT>& run, const PerpendicularFrame<NT>& q, const 
     return eberly_FDer(param_to_nt<NT>(t), q, a2, piece_sign, left_at_one, k);
   };
 
-  if (run.judge(F(lo), st, test, at(lo))) return true;
-  if (run.judge(F(hi), st, test, at(hi))) return true;
+  // F at the kink is positive (D(t*) is perpendicular to Delta, seed section 4): not evaluated.
+  if (!lo_is_kink && run.judge(F(lo), st, test, at(lo))) return true;
+  if (!hi_is_kink && run.judge(F(hi), st, test, at(hi))) return true;
   // The derivatives at the ends are the one-sided ones into the piece.
   if (greater_equal_zero(FDer(lo, false))) return false;
   if (less_equal_zero(FDer(hi, hi_is_one))) return false;
@@ -194,12 +196,12 @@ bool quarter_corrected(EberlyRun<NT>& run, const PerpendicularFrame<NT>& q, cons
     // t* in the parameter type: rounded to binary64 for CORE::Expr and intervals, so the
     // pieces may overlap the kink by an ulp; F is still judged exactly at every point.
     const P tstar = nt_to_param(NT(a2 / (a2 - q.b2)));
-    if (piece_corrected(run, q, a2, negated_u0, zero, tstar, false, sa, test)) return true;
-    return piece_corrected(run, q, a2, negated_u0, tstar, one, true, sb, test);
+    if (piece_corrected(run, q, a2, negated_u0, zero, tstar, false, true, sa, test)) return true;
+    return piece_corrected(run, q, a2, negated_u0, tstar, one, true, false, sb, test);
   }
   // else: one convex piece; the sign of (1-t) a2 + t b2 inside (0,1) is that of a2 or b2.
   const CGAL::Sign s = sa != CGAL::ZERO ? sa : sb;
-  return piece_corrected(run, q, a2, negated_u0, zero, one, true, s, test);
+  return piece_corrected(run, q, a2, negated_u0, zero, one, false, false, s, test);
 }
 
 // SeparatedByCylinderPerpendiculars(C0,W0,r0,h0, C1,W1,r1,h1): directions perpendicular to W0.
