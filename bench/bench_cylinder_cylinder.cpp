@@ -117,6 +117,26 @@ void BM_certified_double_no_gap(benchmark::State& state) {
   run(state, [o](const Pair& p) { return certcyl::certified_cylinder_cylinder(p.a, p.b, o).answer; });
 }
 
+// No stage clock, certificates given as exact binary64 vectors (no Gmpq allocation); the
+// answer is as certified as with the defaults.
+certcyl::CylinderCylinderOptions lean_options(bool gap) {
+  certcyl::CylinderCylinderOptions o;
+  o.time_stages = false;
+  o.rational_certificates = false;
+  o.gap_enclosure = gap;
+  return o;
+}
+
+void BM_certified_double_lean(benchmark::State& state) {
+  const certcyl::CylinderCylinderOptions o = lean_options(true);
+  run(state, [o](const Pair& p) { return certcyl::certified_cylinder_cylinder(p.a, p.b, o).answer; });
+}
+
+void BM_certified_double_lean_no_gap(benchmark::State& state) {
+  const certcyl::CylinderCylinderOptions o = lean_options(false);
+  run(state, [o](const Pair& p) { return certcyl::certified_cylinder_cylinder(p.a, p.b, o).answer; });
+}
+
 #ifdef CERTCYL_HAVE_FCL
 struct FclPair {
   std::shared_ptr<fcl::Cylinderd> a, b;
@@ -203,6 +223,8 @@ BENCHMARK(BM_certified_stages)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_certified_rational)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_double)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_double_no_gap)->Arg(0)->Arg(1);
+BENCHMARK(BM_certified_double_lean)->Arg(0)->Arg(1);
+BENCHMARK(BM_certified_double_lean_no_gap)->Arg(0)->Arg(1);
 
 }  // namespace
 
