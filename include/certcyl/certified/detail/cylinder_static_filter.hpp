@@ -63,37 +63,47 @@ inline constexpr double kStaticAxisGuard = 0x1p-200;     // A.A >= this (world f
 struct Bounded {
   double v = 0, e = 0;  // |v - x| <= e (header comment)
 
-  friend Bounded operator+(const Bounded& a, const Bounded& b) {
+  [[gnu::always_inline]] friend Bounded operator+(const Bounded& a, const Bounded& b) {
     const double v = a.v + b.v;
     return {v, a.e + b.e + kStaticEps * std::abs(v)};
   }
-  friend Bounded operator-(const Bounded& a, const Bounded& b) {
+  [[gnu::always_inline]] friend Bounded operator-(const Bounded& a, const Bounded& b) {
     const double v = a.v - b.v;
     return {v, a.e + b.e + kStaticEps * std::abs(v)};
   }
-  friend Bounded operator-(const Bounded& a) { return {-a.v, a.e}; }
-  friend Bounded operator*(const Bounded& a, const Bounded& b) {
+  [[gnu::always_inline]] friend Bounded operator-(const Bounded& a) { return {-a.v, a.e}; }
+  [[gnu::always_inline]] friend Bounded operator*(const Bounded& a, const Bounded& b) {
     const double v = a.v * b.v;
     return {v, kStaticEps * std::abs(v) + std::abs(a.v) * b.e + std::abs(b.v) * a.e + a.e * b.e};
   }
 };
 
-inline Bounded exactly(double x) { return {x, 0}; }
-inline Bounded abs(const Bounded& a) { return {std::abs(a.v), a.e}; }
+[[gnu::always_inline]] inline Bounded exactly(double x) { return {x, 0}; }
+[[gnu::always_inline]] inline Bounded abs(const Bounded& a) { return {std::abs(a.v), a.e}; }
+// a * b for an exact a: the product rule with a.e = 0.
+[[gnu::always_inline]] inline Bounded times_exact(double a, const Bounded& b) {
+  const double v = a * b.v;
+  return {v, kStaticEps * std::abs(v) + std::abs(a) * b.e};
+}
+// a - b for exact a, b: the difference rule with a.e = b.e = 0.
+[[gnu::always_inline]] inline Bounded difference(double a, double b) {
+  const double v = a - b;
+  return {v, kStaticEps * std::abs(v)};
+}
 // 2^j a for a small j >= 0 (exact: no overflow in the world frame).
-inline Bounded times_power_of_two(const Bounded& a, double two_j) { return {two_j * a.v, two_j * a.e}; }
+[[gnu::always_inline]] inline Bounded times_power_of_two(const Bounded& a, double two_j) { return {two_j * a.v, two_j * a.e}; }
 // a / b for b certainly positive (b.v > b.e; the caller checks).
-inline Bounded divide_positive(const Bounded& a, const Bounded& b) {
+[[gnu::always_inline]] inline Bounded divide_positive(const Bounded& a, const Bounded& b) {
   const double v = a.v / b.v;
   return {v, kStaticEps * std::abs(v) + (a.e + std::abs(v) * (1 + 0x1p-50) * b.e) / (b.v - b.e)};
 }
 
 // w(t): covers |t.v - x| (header comment).
-inline double radius_of(const Bounded& t) { return t.e * kStaticKappaUp + kStaticTau; }
+[[gnu::always_inline]] inline double radius_of(const Bounded& t) { return t.e * kStaticKappaUp + kStaticTau; }
 // Certified upper and lower bounds of x, as doubles: fl(t.v +- w(t)) is within (1 +- eps) of
 // t.v +- w(t); callers account for that factor where they combine them.
-inline double upper_of(const Bounded& t) { return t.v + radius_of(t); }
-inline double lower_of(const Bounded& t) { return t.v - radius_of(t); }
+[[gnu::always_inline]] inline double upper_of(const Bounded& t) { return t.v + radius_of(t); }
+[[gnu::always_inline]] inline double lower_of(const Bounded& t) { return t.v - radius_of(t); }
 
 enum class StaticSign { negative, positive, unknown };
 
@@ -104,7 +114,23 @@ inline StaticSign static_sign(const Bounded& t) {
   return StaticSign::unknown;
 }
 
-inline Vec3<Bounded> exactly(const Vec3<double>& v) { return {exactly(v.x), exactly(v.y), exactly(v.z)}; }
+// Vector forms of the rules (the same rules, written out so that they inline).
+[[gnu::always_inline]] inline Vec3<Bounded> difference(const Vec3<double>& a, const Vec3<double>& b) {
+  return {difference(a.x, b.x), difference(a.y, b.y), difference(a.z, b.z)};
+}
+[[gnu::always_inline]] inline Bounded dot(const Vec3<Bounded>& a, const Vec3<Bounded>& b) {
+  return (a.x * b.x + a.y * b.y) + a.z * b.z;
+}
+[[gnu::always_inline]] inline Bounded dot(const Vec3<double>& a, const Vec3<Bounded>& b) {
+  return (times_exact(a.x, b.x) + times_exact(a.y, b.y)) + times_exact(a.z, b.z);
+}
+[[gnu::always_inline]] inline Vec3<Bounded> cross(const Vec3<Bounded>& a, const Vec3<Bounded>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+[[gnu::always_inline]] inline Vec3<Bounded> cross(const Vec3<double>& a, const Vec3<Bounded>& b) {
+  return {times_exact(a.y, b.z) - times_exact(a.z, b.y), times_exact(a.z, b.x) - times_exact(a.x, b.z),
+          times_exact(a.x, b.y) - times_exact(a.y, b.x)};
+}
 
 // 2^-floor(log2 m) for a normal m > 0, so that m times it lies in [1, 2); 0 when m is zero,
 // subnormal, infinite or NaN, or when the factor itself would not be a normal double.
@@ -127,13 +153,17 @@ struct StaticPair {
     StaticPair s;
     s.c0 = c0;
     s.c1 = c1;
-    s.A0 = exactly(c0.p1) - exactly(c0.p0);
-    s.A1 = exactly(c1.p1) - exactly(c1.p0);
-    s.T = (exactly(c1.p0) + exactly(c1.p1)) - (exactly(c0.p0) + exactly(c0.p1));
+    s.A0 = difference(c0.p1, c0.p0);
+    s.A1 = difference(c1.p1, c1.p0);
+    const auto sum = [](const Point3<double>& a, const Point3<double>& b) {
+      const Point3<double> v = a + b;
+      return Vec3<Bounded>{{v.x, kStaticEps * std::abs(v.x)}, {v.y, kStaticEps * std::abs(v.y)}, {v.z, kStaticEps * std::abs(v.z)}};
+    };
+    s.T = sum(c1.p0, c1.p1) - sum(c0.p0, c0.p1);
     s.AA0 = dot(s.A0, s.A0);
     s.AA1 = dot(s.A1, s.A1);
-    s.rr0 = exactly(c0.radius) * exactly(c0.radius);
-    s.rr1 = exactly(c1.radius) * exactly(c1.radius);
+    s.rr0 = times_exact(c0.radius, exactly(c0.radius));
+    s.rr1 = times_exact(c1.radius, exactly(c1.radius));
     s.usable = lower_of(s.AA0) >= kStaticAxisGuard && lower_of(s.AA1) >= kStaticAxisGuard;
     return s;
   }
@@ -147,11 +177,9 @@ struct StaticDirection {
 };
 
 inline StaticDirection static_direction(const StaticPair& s, const Vec3<double>& D) {
-  const Vec3<Bounded> d = exactly(D);
-  const Bounded four = exactly(4);
-  const Vec3<Bounded> x0 = cross(d, s.A0), x1 = cross(d, s.A1);
-  return {abs(dot(d, s.T)), abs(dot(d, s.A0)), abs(dot(d, s.A1)), divide_positive(four * s.rr0 * dot(x0, x0), s.AA0),
-          divide_positive(four * s.rr1 * dot(x1, x1), s.AA1)};
+  const Vec3<Bounded> x0 = cross(D, s.A0), x1 = cross(D, s.A1);
+  return {abs(dot(D, s.T)), abs(dot(D, s.A0)), abs(dot(D, s.A1)), divide_positive(times_power_of_two(s.rr0 * dot(x0, x0), 4), s.AA0),
+          divide_positive(times_power_of_two(s.rr1 * dot(x1, x1), 4), s.AA1)};
 }
 
 // Sign of c - sqrt(p) - sqrt(q) (= separation_sign), or unknown.
@@ -194,7 +222,7 @@ struct StaticPointSide {
 
 inline StaticPointSide static_point_side(const Cylinder<double>& c, const Vec3<Bounded>& A, const Bounded& AA, const Bounded& rr,
                                          const Point3<double>& X) {
-  const Vec3<Bounded> w = exactly(X) - exactly(c.p0);
+  const Vec3<Bounded> w = difference(X, c.p0);
   const Bounded s = dot(w, A);
   const Vec3<Bounded> x = cross(w, A);
   const Bounded ww = dot(x, x);
