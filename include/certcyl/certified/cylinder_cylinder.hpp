@@ -144,8 +144,10 @@ struct CylinderCylinderResult {
   std::optional<CylinderContact> contact;
 
   // Certified phi_lower <= phi* <= phi_upper and log_gap_lower <= log(phi*) <= log_gap_upper.
-  // gap_known is false when Delta = 0 (phi* is undefined: the cylinders overlap at every scale)
-  // or when options.gap_enclosure is off; the four numbers are then meaningless.
+  // gap_known is false when Delta = 0 (phi* is undefined: the cylinders overlap at every scale),
+  // when options.gap_enclosure is off, or when no finite bound was found (input whose binary64
+  // range exceeds what the scaled frame can hold exactly, so intervals overflow or underflow);
+  // the four numbers are then meaningless.
   bool gap_known = false;
   double phi_lower = 0, phi_upper = 0, log_gap_lower = 0, log_gap_upper = 0;
 
@@ -213,8 +215,9 @@ inline Rational times_two_power(Rational x, long j) {
 // magnitude lies in [1, 2) (exact, checked; k = 0 when the scaling would not be exact). All
 // double and interval work happens there: it is what the static filter needs, and it keeps the
 // intervals far from overflow and underflow for any input magnitude. Directions are the same
-// in both frames; points are divided by 2^k on the way out. Other Rational input keeps k = 0,
-// its doubles are only nearest values (candidates), and the filter is off.
+// in both frames; points are divided by 2^k on the way out. Other Rational input is scaled the
+// same way from its nearest doubles, which are then only candidates (its intervals enclose the
+// scaled input), and the filter is off.
 class CylinderCylinderSolver {
  public:
   CylinderCylinderSolver(const Cylinder<Rational>& c0, const Cylinder<Rational>& c1, const CylinderCylinderOptions& options)
@@ -230,7 +233,14 @@ class CylinderCylinderSolver {
     if (binary64) {
       make_world(d0, d1);
     } else {
-      dbl_ = CylinderPair<double>::make(d0, d1);
+      // The nearest doubles, scaled like a world frame (candidates only; the filter is off).
+      const double s = power_of_two_normaliser(std::max(largest_magnitude(d0), largest_magnitude(d1)));
+      if (s != 0) {
+        world_scale_ = s;
+        world_exponent_ = static_cast<int>((std::bit_cast<std::uint64_t>(s) >> 52) & 0x7ff) - 1023;
+      }
+      const auto scaled = [this](double x) { return x * world_scale_; };
+      dbl_ = CylinderPair<double>::make(d0.map(scaled), d1.map(scaled));
     }
   }
 
@@ -254,18 +264,19 @@ class CylinderCylinderSolver {
   using Clock = std::chrono::steady_clock;
 
   // ---- frames -----------------------------------------------------------------------------------
+  static double largest_magnitude(const Cylinder<double>& c) {
+    return std::max({std::abs(c.p0.x), std::abs(c.p0.y), std::abs(c.p0.z), std::abs(c.p1.x), std::abs(c.p1.y), std::abs(c.p1.z),
+                     std::abs(c.radius)});
+  }
+
   void make_world(const Cylinder<double>& c0, const Cylinder<double>& c1) {
     binary64_ = true;
-    const auto largest = [](const Cylinder<double>& c) {
-      return std::max({std::abs(c.p0.x), std::abs(c.p0.y), std::abs(c.p0.z), std::abs(c.p1.x), std::abs(c.p1.y), std::abs(c.p1.z),
-                       c.radius});
-    };
-    const double s = power_of_two_normaliser(std::max(largest(c0), largest(c1)));
+    const double s = power_of_two_normaliser(std::max(largest_magnitude(c0), largest_magnitude(c1)));
     // x s is exact when it is zero or a normal number (s is a power of two, |x s| < 2).
     bool exact = s != 0;
     const auto scaled = [&exact, s](double x) {
       const double y = x * s;
-      exact = exact && (y == 0 || std::abs(y) >= std::numeric_limits<double>::min());
+      exact = exact && (x == 0 || std::abs(y) >= std::numeric_limits<double>::min());
       return y;
     };
     Cylinder<double> w0 = c0.map(scaled), w1 = c1.map(scaled);
@@ -290,7 +301,8 @@ class CylinderCylinderSolver {
         const auto to_i = [](double x) { return Interval(x); };
         iv_ = CylinderPair<Interval>::make(dbl_.c0.map(to_i), dbl_.c1.map(to_i));
       } else {
-        const auto to_i = [](const Rational& q) { return enclose_interval(q); };
+        const Interval s(world_scale_);
+        const auto to_i = [&s](const Rational& q) { return enclose_interval(q) * s; };
         iv_ = CylinderPair<Interval>::make(exact_input_[0]->map(to_i), exact_input_[1]->map(to_i));
       }
     }
@@ -358,10 +370,14 @@ class CylinderCylinderSolver {
   }
 
   // ---- certified checks: static filter, then intervals, then Gmpq ------------------------------
+  // Candidates computed in double may be non-finite (overflow, 0/0 in degenerate input).
+  static bool finite(const Vec3<double>& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
   // Sign of |D.T| - phi2(D) for a world direction D. With the filter on, D is first scaled by a
   // power of two to |D_i| < 2 (the scaled D is the certificate; the sign does not change) and
   // its filter values are left in *terms for the gap bound.
   CGAL::Sign check_direction(Vec3<double>& D, std::optional<StaticDirection>* terms = nullptr) {
+    if (!finite(D)) return CGAL::ZERO;  // not a candidate: proves nothing
     ++result_.counters.directions_checked;
     if (static_ok_) {
       const double s = power_of_two_normaliser(std::max({std::abs(D.x), std::abs(D.y), std::abs(D.z)}));
@@ -390,6 +406,7 @@ class CylinderCylinderSolver {
 
   // Whether the world point X is strictly inside both cylinders.
   bool check_point(const Point3<double>& X, std::optional<StaticPoint>* values = nullptr) {
+    if (!finite(X)) return false;  // not a candidate
     ++result_.counters.points_checked;
     if (static_ok_) {
       const StaticPoint p = static_point(stat_, X);
@@ -416,15 +433,15 @@ class CylinderCylinderSolver {
   void lower_phi_upper(double u) {
     if (!phi_upper_ || u < *phi_upper_) phi_upper_ = u;
   }
-  // 1 / sigma_upper rounded down: fl(kappa' fl(1 / s)) <= kappa' (1 + eps)^2 / s <= 1 / s.
+  // 1 / sigma_upper rounded down: fl(rho' fl(1 / s)) <= rho' (1 + eps)^2 / s <= 1 / s.
   void raise_phi_lower(double sigma_upper) {
     if (!(sigma_upper > 0) || !std::isfinite(sigma_upper)) return;
-    const double lower = kStaticKappaDown * (1 / sigma_upper);
+    const double lower = kStaticRoundDown * (1 / sigma_upper);
     if (lower > phi_lower_) phi_lower_ = lower;
   }
 
   void bound_by_direction(Vec3<double> D, const StaticDirection* terms = nullptr) {
-    if (!options_.gap_enclosure) return;
+    if (!options_.gap_enclosure || !finite(D)) return;
     if (static_ok_) {
       if (terms) return lower_phi_upper(static_ratio_upper(*terms));
       const double s = power_of_two_normaliser(std::max({std::abs(D.x), std::abs(D.y), std::abs(D.z)}));
@@ -441,7 +458,7 @@ class CylinderCylinderSolver {
   }
 
   void bound_by_point(const Point3<double>& X, const StaticPoint* values = nullptr) {
-    if (!options_.gap_enclosure) return;
+    if (!options_.gap_enclosure || !finite(X)) return;
     if (static_ok_) return raise_phi_lower(static_sigma_upper(stat_, values ? *values : static_point(stat_, X)));
     bound_by_point(to_iv(X));
   }
@@ -451,7 +468,7 @@ class CylinderCylinderSolver {
     const CylinderPair<Interval>& d = iv();
     CGAL::Protect_FPU_rounding<true> upward;
     const Interval s = scale_enclosure(d, X);
-    if (!(s.sup() > 0)) return;
+    if (!(s.sup() > 0) || !std::isfinite(s.sup())) return;
     const double lower = (Interval(1) / Interval(s.sup())).inf();
     if (lower > phi_lower_) phi_lower_ = lower;
   }
@@ -485,7 +502,7 @@ class CylinderCylinderSolver {
     bool exact = true;
     const Point3<double> Y = X.map([&](double x) {
       const double y = x * inverse;
-      if (y != 0 && !(std::abs(y) >= std::numeric_limits<double>::min())) exact = false;
+      exact = exact && (x == 0 || std::abs(y) >= std::numeric_limits<double>::min());
       return y;
     });
     if (exact) {
@@ -693,7 +710,7 @@ class CylinderCylinderSolver {
                                                    e.AA1 * e.T - dot(e.A1, e.T) * e.A1};
     for (const Vec3<Rational>& D : structural)
       if (try_touching(D)) return true;
-    if (optimum_) {
+    if (optimum_ && finite(*optimum_)) {
       const Vec3<Rational> D = optimum_->map([](double x) { return Rational(x); });
       if (!(D.x == 0 && D.y == 0 && D.z == 0) && try_touching(reconstruct_direction(D, Rational(1, 1 << 20)))) return true;
     }

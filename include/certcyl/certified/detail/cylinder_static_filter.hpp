@@ -38,7 +38,9 @@
 // underflow in v and in e, so |t.v - x| <= w(t); t.v > w(t) proves x > 0, t.v < -w(t) proves
 // x < 0. Every bound built from w(t) (upper_of, lower_of) is at least tau away from rounding
 // trouble: quotients and roots of them are normal numbers, so they lose only factors 1 +- eps,
-// which the final kappa repays (counted at each function below).
+// at most 8 of them, which a final factor rho = 1 + 2^-48 >= (1 - eps)^-8 (or rho' = 1 - 2^-48
+// for lower bounds) repays (counted at each function below). rho costs a relative margin of
+// 2^-48 in the decisions; kappa, on the error bound only, costs nothing measurable.
 #pragma once
 
 #include <CGAL/enum.h>
@@ -55,8 +57,9 @@
 namespace certcyl::detail {
 
 inline constexpr double kStaticEps = 0x1p-52;            // eps: relative error of one operation
-inline constexpr double kStaticKappaUp = 1 + 0x1p-40;    // kappa
-inline constexpr double kStaticKappaDown = 1 - 0x1p-40;  // kappa' (lower bounds)
+inline constexpr double kStaticKappaUp = 1 + 0x1p-40;    // kappa: inflates error bounds
+inline constexpr double kStaticRoundUp = 1 + 0x1p-48;    // rho: repays a few roundings of a value
+inline constexpr double kStaticRoundDown = 1 - 0x1p-48;  // rho': the same for lower bounds
 inline constexpr double kStaticTau = 0x1p-600;           // tau: absolute slack for underflow
 inline constexpr double kStaticAxisGuard = 0x1p-200;     // A.A >= this (world frame)
 
@@ -183,34 +186,35 @@ inline StaticDirection static_direction(const StaticPair& s, const Vec3<double>&
 }
 
 // Sign of c - sqrt(p) - sqrt(q) (= separation_sign), or unknown.
-//   positive: L = fl(lower(c)) > fl(kappa * fl(sqrt(fl(upper p)) + sqrt(fl(upper q)))).
-//     c >= L (1 - eps) when L > 0; sqrt(p) + sqrt(q) <= R / (1 - eps)^2.5 with R the rounded sum
-//     of rounded roots; fl(kappa R) >= kappa (1 - eps) R >= R / (1 - eps)^3.5.
-//   negative: H = fl(upper c) < 0, or fl(kappa H) < fl(kappa' S) with S the rounded sum of the
+//   positive: L = fl(lower(c)) > fl(rho * fl(sqrt(fl(upper p)) + sqrt(fl(upper q)))).
+//     c >= L / (1 + eps) when L > 0; sqrt(p) + sqrt(q) <= R / (1 - eps)^2.5 with R the rounded
+//     sum of rounded roots; fl(rho R) >= rho (1 - eps) R >= R (1 + eps) / (1 - eps)^2.5.
+//   negative: H = fl(upper c) < 0, or fl(rho H) < fl(rho' S) with S the rounded sum of the
 //     rounded roots of the rounded lower bounds of p, q (clamped at 0):
-//     c <= H / (1 - eps) <= fl(kappa H);  sqrt(p) + sqrt(q) >= S / (1 + eps)^2.5 >= fl(kappa' S).
+//     c <= H / (1 - eps) <= fl(rho H) (exact when H is subnormal: fl is monotone);
+//     sqrt(p) + sqrt(q) >= S / (1 + eps)^2.5 >= fl(rho' S).
 inline StaticSign static_separation_sign(const StaticDirection& t) {
   const Bounded c = t.dT - t.dA0 - t.dA1;
   const double L = lower_of(c);
   if (L > 0) {
     const double R = std::sqrt(upper_of(t.p)) + std::sqrt(upper_of(t.q));
-    if (L > kStaticKappaUp * R) return StaticSign::positive;
+    if (L > kStaticRoundUp * R) return StaticSign::positive;
   }
   const double H = upper_of(c);
   if (H < 0) return StaticSign::negative;
   const double S = std::sqrt(std::max(lower_of(t.p), 0.0)) + std::sqrt(std::max(lower_of(t.q), 0.0));
-  if (kStaticKappaUp * H < kStaticKappaDown * S) return StaticSign::negative;
+  if (kStaticRoundUp * H < kStaticRoundDown * S) return StaticSign::negative;
   return StaticSign::unknown;
 }
 
 // A certified upper bound of phi2(D) / |D.T| (>= phi*), or +infinity when |D.T| may vanish.
 // N = rounded sum of the four rounded upper bounds (>= phi2 (1 - eps)^5), M = fl(lower |D.T|)
-// (<= |D.T| (1 + eps)): fl(kappa fl(N / M)) >= (phi2 / |D.T|) kappa (1 - eps)^7 >= the ratio.
+// (<= |D.T| (1 + eps)): fl(rho fl(N / M)) >= (phi2 / |D.T|) rho (1 - eps)^8 >= the ratio.
 inline double static_ratio_upper(const StaticDirection& t) {
   const double M = lower_of(t.dT);
   if (!(M > 0)) return std::numeric_limits<double>::infinity();
   const double N = (upper_of(t.dA0) + upper_of(t.dA1)) + (std::sqrt(upper_of(t.p)) + std::sqrt(upper_of(t.q)));
-  return kStaticKappaUp * (N / M);
+  return kStaticRoundUp * (N / M);
 }
 
 // ---- point X: strictly inside both cylinders, and sigma(X) ---------------------------------
@@ -264,7 +268,7 @@ inline StaticSign static_inside_both(const StaticPoint& p) {
 //   axial  |2s - AA| / AA:     fl(U / M) with U = fl(upper |2s - AA|) >= (1 - eps) |2s - AA|,
 //                              M = fl(lower AA) <= (1 + eps) AA: >= (1 - eps)^3 times the term;
 //   radial sqrt(ww / (r^2 AA)): fl(sqrt(fl(U / M))) likewise, >= (1 - eps)^3.5 times the term;
-// fl(kappa max) >= (1 - eps)^4.5 kappa (the largest term) >= sigma(X).
+// fl(rho max) >= (1 - eps)^4.5 rho (the largest term) >= sigma(X).
 inline double static_sigma_upper(const StaticPair& s, const StaticPoint& p) {
   if (p.far) return std::numeric_limits<double>::infinity();
   double sigma = 0;
@@ -276,7 +280,7 @@ inline double static_sigma_upper(const StaticPair& s, const StaticPoint& p) {
   };
   one(p.side0, s.AA0, s.rr0);
   one(p.side1, s.AA1, s.rr1);
-  return kStaticKappaUp * sigma;
+  return kStaticRoundUp * sigma;
 }
 
 }  // namespace certcyl::detail
