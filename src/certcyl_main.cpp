@@ -4,8 +4,11 @@
 #include <iostream>
 #include <thread>
 
+#include <unistd.h>
+
 #include "demo.hpp"
 #include "query.hpp"
+#include "scene.hpp"
 
 namespace {
 
@@ -55,6 +58,21 @@ int main(int argc, char** argv) {
       });
   query->add_option("--threads", threads, "Worker threads (default 1; 0 = all cores)");
 
+  std::string scene_file;
+  unsigned scene_threads = 1;
+  bool scene_progress = false;
+  CLI::App* scene = app.add_subcommand("scene", "Find every touching or overlapping pair in a scene of cylinders");
+  scene->footer(
+      "Scene file: {\"cylinders\": [{\"name\": \"c1\", \"p0\": [x,y,z], \"p1\": [x,y,z], \"radius\": r}, ...],\n"
+      "             \"triangles\": [{\"name\": \"t1\", \"vertices\": [P, P, P]}, ...]}  (triangles optional;\n"
+      "cylinders may use the center/axis/radius/height form). Writes one JSON line per pair that touches,\n"
+      "overlaps or is undecided: {\"a\": name, \"b\": name, \"answer\": ..., \"certificate\": ...}.\n"
+      "Broad phase: CGAL::box_intersection_d on closed boxes rounded outward; narrow phase: the certified\n"
+      "queries. A summary and timings go to standard error. Exit status: 0 done, 2 invalid scene, 1 I/O error.");
+  scene->add_option("FILE", scene_file, "Scene JSON file")->required();
+  scene->add_option("--threads", scene_threads, "Worker threads for the narrow phase (default 1; 0 = all cores)");
+  scene->add_flag("--progress", scene_progress, "Report progress on standard error (default: when it is a terminal)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -69,6 +87,10 @@ int main(int argc, char** argv) {
     if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
     std::ios::sync_with_stdio(false);
     return certcyl::cli::run_query(std::cin, std::cout, options, threads);
+  }
+  if (scene->parsed()) {
+    if (scene_threads == 0) scene_threads = std::max(1u, std::thread::hardware_concurrency());
+    return certcyl::cli::run_scene(scene_file, std::cout, scene_threads, scene_progress || isatty(2));
   }
   return 0;
 }

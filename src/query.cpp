@@ -14,6 +14,9 @@ const std::map<std::string, QueryKind>& query_kinds() {
   static const std::map<std::string, QueryKind> kinds = [] {
     std::map<std::string, QueryKind> k;
     register_point_queries(k);
+    register_line_queries(k);
+    register_triangle_queries(k);
+    register_cylinder_queries(k);
     return k;
   }();
   return kinds;

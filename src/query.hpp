@@ -48,5 +48,8 @@ int run_query(std::istream& in, std::ostream& out, const QueryOptions& options, 
 
 // Registration of each query family (one source file each).
 void register_point_queries(std::map<std::string, QueryKind>& kinds);
+void register_line_queries(std::map<std::string, QueryKind>& kinds);
+void register_triangle_queries(std::map<std::string, QueryKind>& kinds);
+void register_cylinder_queries(std::map<std::string, QueryKind>& kinds);
 
 }  // namespace certcyl::cli

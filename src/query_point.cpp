@@ -28,7 +28,7 @@ ojson point_query(const json& input, const QueryOptions& options, const char* so
     return out;
   }
   // "polynomial": the same predicate in the number type of --nt, certified only if that type is.
-  return run_in_number_type(options, reader.all_binary64(), [&]<class NT>() {
+  return run_in_number_type(options, reader.all_binary64(), true, [&]<class NT>() {
     return answer_of(classify_point(convert<NT>(x), convert<NT>(solid)));
   });
 }

@@ -24,17 +24,19 @@ inline ojson answer_json(Answer a, bool certified, const std::string& method, co
   return ojson{{"answer", std::string(to_string(a))}, {"certified", certified}, {"method", method}, {"nt", nt}};
 }
 
-// Runs body.template operator()<NT>() -> Answer in the number type of --nt. A certified type
-// that cannot decide (an interval) gives "undecided"; a type that cannot hold the input
+// Runs body.template operator()<NT>() -> Answer in the number type of --nt. The answer is
+// "certified" only when the method is a correct algorithm for the query (`exact_algorithm`:
+// an exact predicate, not a seed whose control flow can be wrong even in exact arithmetic) and
+// the type is certified. A certified type that cannot decide (an interval) gives "undecided"; a type that cannot hold the input
 // (Mpzf and a non-dyadic value) is an error for that line. When the type rounds and some input
 // was not a binary64 value, the answer says so ("input_rounded": true).
 template <class Body>
-ojson run_in_number_type(const QueryOptions& options, bool input_all_binary64, Body body) {
+ojson run_in_number_type(const QueryOptions& options, bool input_all_binary64, bool exact_algorithm, Body body) {
   const NumberTypeSpec& spec = options.nt;
   Answer a = Answer::undecided;
   bool certified = false;
   dispatch(spec, [&]<class NT>() {
-    certified = NumberTraits<NT>::is_certified;
+    certified = exact_algorithm && NumberTraits<NT>::is_certified;
     try {
       a = body.template operator()<NT>();
     } catch (const CGAL::Uncertain_conversion_exception&) {

@@ -1,0 +1,11 @@
+// The JSON form of a certified cylinder-cylinder result (shared by query and scene).
+#pragma once
+
+#include "certcyl/certified/cylinder_cylinder.hpp"
+#include "query.hpp"
+
+namespace certcyl::cli {
+
+ojson cylinder_cylinder_json(const CylinderCylinderResult& r);
+
+}  // namespace certcyl::cli
