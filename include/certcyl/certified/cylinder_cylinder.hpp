@@ -222,7 +222,7 @@ inline Rational times_two_power(Rational x, long j) {
 class CylinderCylinderSolver {
  public:
   CylinderCylinderSolver(const Cylinder<Rational>& c0, const Cylinder<Rational>& c1, const CylinderCylinderOptions& options)
-      : options_(options), exact_input_{c0, c1} {
+      : options_(options), input_{&c0, &c1} {
     bool binary64 = true;
     const auto to_d = [&binary64](const Rational& q) {
       double d;
@@ -287,11 +287,12 @@ class CylinderCylinderSolver {
       stat_ = StaticPair::make(w0, w1);
       world_exact_ = true;
       static_ok_ = stat_.usable;
+      // The filter's values are CylinderPair<double>::make's, operation for operation.
+      const auto value = [](const Vec3<Bounded>& v) { return Vec3<double>{v.x.v, v.y.v, v.z.v}; };
+      dbl_ = {w0, w1, value(stat_.A0), value(stat_.A1), value(stat_.T), stat_.AA0.v, stat_.AA1.v};
     } else {
-      w0 = c0;
-      w1 = c1;
+      dbl_ = CylinderPair<double>::make(c0, c1);
     }
-    dbl_ = CylinderPair<double>::make(w0, w1);
   }
 
   // Intervals of the world input, built when first needed.
@@ -304,19 +305,20 @@ class CylinderCylinderSolver {
       } else {
         const Interval s(world_scale_);
         const auto to_i = [&s](const Rational& q) { return enclose_interval(q) * s; };
-        iv_ = CylinderPair<Interval>::make(exact_input_[0]->map(to_i), exact_input_[1]->map(to_i));
+        iv_ = CylinderPair<Interval>::make(input_[0]->map(to_i), input_[1]->map(to_i));
       }
     }
     return *iv_;
   }
 
   const Cylinder<Rational>& exact_cylinder(int i) {
-    if (!exact_input_[0]) {
+    if (!input_[0]) {
       const auto to_q = [](double x) { return Rational(x); };
-      exact_input_[0] = double_input_[0]->map(to_q);
-      exact_input_[1] = double_input_[1]->map(to_q);
+      converted_input_[0] = double_input_[0]->map(to_q);
+      converted_input_[1] = double_input_[1]->map(to_q);
+      input_ = {&*converted_input_[0], &*converted_input_[1]};
     }
-    return *exact_input_[i];
+    return *input_[i];
   }
 
   const CylinderPair<Rational>& exact() {
@@ -757,7 +759,10 @@ class CylinderCylinderSolver {
   }
 
   CylinderCylinderOptions options_;
-  std::array<std::optional<Cylinder<Rational>>, 2> exact_input_;
+  // The exact input: the caller's Rational cylinders (they outlive the solver, which lives in
+  // one call), or the converted double input, built when first needed.
+  std::array<const Cylinder<Rational>*, 2> input_{nullptr, nullptr};
+  std::array<std::optional<Cylinder<Rational>>, 2> converted_input_;
   std::array<std::optional<Cylinder<double>>, 2> double_input_;
   bool binary64_ = false;     // every input number is a binary64 value
   bool world_exact_ = false;  // the world frame is an exact scaling of the input
