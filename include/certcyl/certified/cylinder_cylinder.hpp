@@ -12,15 +12,16 @@
 // 1/phi* is the growth distance (the factor by which both cylinders, scaled about their
 // midpoints, just touch). log(phi*) is the signed gap reported with every answer.
 //
-// Certificates (all exact rationals, each checked exactly; see detail/cylinder_certificates.hpp):
+// Certificates (exact rationals, or binary64 vectors, which are exact rationals too; each proved
+// by a rigorous sign computation, never a tolerance; see detail/cylinder_certificates.hpp):
 //   separated    direction D with phi(D) < D.Delta (sign of sqrt(p) + sqrt(q) + c by squaring);
 //   overlapping  witness point strictly inside both (the polynomial point-in-cylinder test);
 //   touching     contact: normal D with phi(D) = D.Delta exactly, and a point in both closed
 //                cylinders, with the features that meet (cap, wall, rim; detail/cylinder_touching.hpp).
 //
-// Every check runs in three arithmetics, the first that decides wins (result.certified_by):
+// Every check runs in up to three arithmetics, the first that decides wins (result.certified_by):
 // the semi-static double filter (detail/cylinder_static_filter.hpp; binary64 input only, in a
-// frame scaled by a power of two), Interval_nt, then Gmpq.
+// frame scaled by a power of two), Interval_nt, then Gmpq. Each decides only what it proves.
 //
 // Stages, in order; the first that proves an answer decides (result.stage):
 //   midpoints        Delta = 0: the common midpoint is interior to both.
