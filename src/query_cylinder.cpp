@@ -11,8 +11,7 @@
 namespace certcyl::cli {
 
 ojson cylinder_cylinder_json(const CylinderCylinderResult& r) {
-  ojson out = answer_json(r.answer, r.answer != Answer::undecided, "certified",
-                          r.gmpfr_precision ? "gmpfr+gmpq" : (r.counters.exact_checks ? "gmpq" : "interval"));
+  ojson out = answer_json(r.answer, r.answer != Answer::undecided, "certified", std::string(to_string(r.certified_by)));
   out["stage"] = std::string(to_string(r.stage));
   // log(phi*): negative when separated, 0 when touching, positive when overlapping; null when
   // the midpoints coincide (phi* is undefined: overlapping at every scale).

@@ -15,7 +15,8 @@ namespace certcyl::cli {
 namespace {
 
 ojson certified_json(const CertifiedLineResult& r) {
-  ojson out = answer_json(r.answer, true, "certified", r.counter.exact ? "gmpq" : "interval");
+  const std::string stage = r.stage == LineStage::semi_static ? "static" : std::string(to_string(r.stage));
+  ojson out = answer_json(r.answer, true, "certified", stage);
   ojson interval = ojson::array();
   for (const auto* e : {&r.in, &r.out}) {
     if (!*e) continue;
@@ -28,7 +29,7 @@ ojson certified_json(const CertifiedLineResult& r) {
   // The endpoints are the proof: each is an exact root of the tube quadratic or a cap plane's
   // parameter, and the decision between them was made by exact signs.
   out["certificate"] = ojson{{"endpoints", "exact roots of the wall quadratic and cap-plane parameters"},
-                             {"decided_by", r.counter.exact ? "gmpq" : "interval"}};
+                             {"decided_by", stage}};
   return out;
 }
 

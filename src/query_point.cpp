@@ -23,7 +23,7 @@ ojson point_query(const json& input, const QueryOptions& options, const char* so
   if (options.method == "certified") {
     FilterCounter counter;
     const Side s = filtered_call([&]<class NT>() { return classify_point(convert<NT>(x), convert<NT>(solid)); }, counter);
-    ojson out = answer_json(answer_of(s), true, options.method, counter.exact ? "gmpq" : "interval");
+    ojson out = answer_json(answer_of(s), true, options.method, counter.exact ? "exact" : "interval");
     out["certificate"] = ojson{{"position", to_string(s)}, {"point", exact_json(x)}};
     return out;
   }

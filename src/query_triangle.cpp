@@ -10,7 +10,8 @@
 namespace certcyl::cli {
 
 ojson triangle_cylinder_json(const TriangleCylinderResult& r) {
-  ojson out = answer_json(r.answer, true, "certified", r.counter.exact ? "gmpq" : "interval");
+  const std::string stage = r.stages.exact ? "exact" : (r.stages.interval ? "interval" : "static");
+  ojson out = answer_json(r.answer, true, "certified", stage);
   ojson cert;
   if (r.witness) cert["witness"] = exact_json(*r.witness);
   if (r.answer == Answer::touching) {
@@ -28,7 +29,7 @@ ojson triangle_cylinder_json(const TriangleCylinderResult& r) {
     cert["squared_distance_to_axis"] = exact_json(r.squared_distance);
     if (!(r.normal == Vec3<Rational>{0, 0, 0})) cert["normal"] = exact_json(r.normal);
   }
-  cert["decided_by"] = r.counter.exact ? "gmpq" : "interval";
+  cert["decided_by"] = stage;
   out["certificate"] = cert;
   return out;
 }
