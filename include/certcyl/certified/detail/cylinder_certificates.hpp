@@ -180,7 +180,7 @@ inline bool exact_double(const Rational& q, double& d) {
 inline Interval enclose_interval(const Rational& q) {
   double d;
   if (exact_double(q, d)) return Interval(d);
-  auto [lo, hi] = enclose(q);
+  auto [lo, hi] = certcyl::enclose(q);  // qualified: detail::enclose (quadratic_number.hpp) would hide it
   return Interval(lo, hi);
 }
 
