@@ -3,6 +3,7 @@
 #   scripts/install-deps.sh            library, command and tests
 #   scripts/install-deps.sh --study    also the peer libraries and plotting (experiments)
 #   scripts/install-deps.sh --paper    also LaTeX (the paper)
+#   scripts/install-deps.sh --fuzz     also clang and its sanitizer/libFuzzer runtimes (scripts/fuzz.sh)
 set -euo pipefail
 
 packages=(
@@ -14,7 +15,8 @@ for arg in "$@"; do
   case "$arg" in
     --study) packages+=(libfcl-dev libbullet-dev libode-dev python3-matplotlib python3-numpy) ;;
     --paper) packages+=(texlive-latex-recommended texlive-latex-extra texlive-science latexmk poppler-utils) ;;
-    *) echo "install-deps.sh: unknown option '$arg' (expected --study or --paper)" >&2; exit 2 ;;
+    --fuzz) packages+=(clang libclang-rt-14-dev) ;;
+    *) echo "install-deps.sh: unknown option '$arg' (expected --study, --paper or --fuzz)" >&2; exit 2 ;;
   esac
 done
 

@@ -224,9 +224,14 @@ inline std::optional<double> exact_binary64(const Rational& x) {
   return k == 0 ? mpz_get_d(num) : std::ldexp(mpz_get_d(num), static_cast<int>(-k));
 }
 
+// The type of a primitive's image in double. (A named function object, not a lambda in the
+// return type: clang 14 crashes generating code for a lambda in an unevaluated operand here.)
+struct AsDouble {
+  double operator()(const Rational&) const { return 0.0; }
+};
+
 template <class Primitive>
-std::optional<decltype(std::declval<Primitive>().map([](const Rational&) { return 0.0; }))> exact_binary64(
-    const Primitive& p) {
+std::optional<decltype(std::declval<Primitive>().map(AsDouble{}))> exact_binary64(const Primitive& p) {
   bool ok = true;
   const auto image = p.map([&ok](const Rational& x) {
     const std::optional<double> d = exact_binary64(x);

@@ -48,9 +48,10 @@
 
 namespace certcyl::detail {
 
-// |x| as an enclosure: for an interval that straddles zero, [0, max]; never throws.
+// |x| as an enclosure: for an interval that straddles zero, [0, max]; never throws. (Not named
+// `magnitude`: ADL would then pick CGAL::magnitude(Interval_nt), which returns the double max |x|.)
 template <class NT>
-NT magnitude(const NT& x) {
+NT abs_enclosure(const NT& x) {
   if constexpr (std::is_same_v<NT, Interval>) {
     return CGAL::abs(x);
   } else {
@@ -117,7 +118,7 @@ struct SeparationTerms {
 template <class NT>
 SeparationTerms<NT> separation_terms(const CylinderPair<NT>& d, const Vec3<NT>& D) {
   const NT four = nt::constant<NT>(4);
-  const NT c = magnitude(dot(D, d.T)) - magnitude(dot(D, d.A0)) - magnitude(dot(D, d.A1));
+  const NT c = abs_enclosure(dot(D, d.T)) - abs_enclosure(dot(D, d.A0)) - abs_enclosure(dot(D, d.A1));
   const NT p = four * squared(d.c0.radius) * squared_norm(cross(D, d.A0)) / d.AA0;
   const NT q = four * squared(d.c1.radius) * squared_norm(cross(D, d.A1)) / d.AA1;
   return {c, p, q};
@@ -181,7 +182,7 @@ inline bool exact_double(const Rational& q, double& d) {
 inline Interval enclose_interval(const Rational& q) {
   double d;
   if (exact_double(q, d)) return Interval(d);
-  auto [lo, hi] = enclose(q);
+  auto [lo, hi] = certcyl::enclose(q);  // qualified: detail::enclose (quadratic_number.hpp) would hide it
   return Interval(lo, hi);
 }
 

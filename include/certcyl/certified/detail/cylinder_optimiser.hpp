@@ -53,7 +53,7 @@ class PlaneProblem {
     // Basis of the plane: U orthogonal to T and to the coordinate axis T is least aligned with.
     std::size_t k = 0;
     for (std::size_t i = 1; i < 3; ++i)
-      if (nt::compare(magnitude(d.T[i]), magnitude(d.T[k])) == CGAL::SMALLER) k = i;
+      if (nt::compare(abs_enclosure(d.T[i]), abs_enclosure(d.T[k])) == CGAL::SMALLER) k = i;
     Vec3<NT> e{zero, zero, zero};
     e[k] = one;
     const Vec3<NT> Tx = cross(d.T, e);
@@ -149,7 +149,7 @@ class PlaneProblem {
     const Vec3<NT>* A[2] = {&d_.A0, &d_.A1};
     const NT* AA[2] = {&d_.AA0, &d_.AA1};
     for (int i = 0; i < 2; ++i) {
-      const NT axial = magnitude(dot(two * X - c[i]->p0 - c[i]->p1, *A[i])) / *AA[i];
+      const NT axial = abs_enclosure(dot(two * X - c[i]->p0 - c[i]->p1, *A[i])) / *AA[i];
       const Vec3<NT> w = cross(X - c[i]->p0, *A[i]);
       const NT radial = nt::sqrt(dot(w, w) / (c[i]->radius * c[i]->radius * *AA[i]));
       if (nt::compare(axial, sigma) == CGAL::LARGER) sigma = axial;
@@ -163,7 +163,7 @@ class PlaneProblem {
   NT value_at(const NT& u, const NT& v) const {
     NT f = nt::constant<NT>(0);
     for (int i = 0; i < 2; ++i) {
-      f = f + magnitude(axial_[i].at(u, v));
+      f = f + abs_enclosure(axial_[i].at(u, v));
       const Vec3<NT> w = radial_[i].at(u, v);
       f = f + nt::sqrt(dot(w, w));
     }

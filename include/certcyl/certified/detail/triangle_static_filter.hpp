@@ -140,7 +140,7 @@ inline StaticBounds derive_static_bounds() {
   return t;
 }
 
-inline const StaticBounds& static_bounds() {
+inline const StaticBounds& triangle_static_bounds() {
   static const StaticBounds bounds = derive_static_bounds();
   return bounds;
 }
@@ -206,7 +206,7 @@ inline std::optional<SlabDecision> static_decide_triangle_cylinder(const Triangl
   const std::optional<double> M2 = static_scale(m);
   if (!M2) return std::nullopt;
   try {
-    return decide_slab(in, StaticSigns(static_bounds(), *M2));
+    return decide_slab(in, StaticSigns(triangle_static_bounds(), *M2));
   } catch (const StaticUndecided&) {
     return std::nullopt;
   }

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer harnesses (fuzz/) with clang under AddressSanitizer and
+# UndefinedBehaviorSanitizer in build-fuzz/, and runs each for the given time from its seed
+# corpus (fuzz/corpus/<harness>/, copied, so the repository's corpus is left unchanged).
+#   scripts/fuzz.sh [seconds]     default 60 s per harness
+# Prints the executions per harness; exits non-zero if a harness found a crash, a hang, undefined
+# behaviour or a wrong certified answer (the input is kept in build-fuzz/findings/).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds="${1:-60}"
+bash scripts/install-deps.sh --fuzz
+build=build-fuzz
+flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g"
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS="$flags" \
+  -DCERTCYL_FUZZ=ON -DCERTCYL_BUILD_TESTS=OFF -DCERTCYL_BUILD_BENCHMARKS=OFF -DCERTCYL_BUILD_EXPERIMENTS=OFF \
+  -DCERTCYL_WERROR=ON > /dev/null
+harnesses=(fuzz_json_line fuzz_line_cylinder fuzz_triangle_cylinder fuzz_cylinder_cylinder)
+cmake --build "$build" -j"$(nproc)" --target "${harnesses[@]}"
+mkdir -p "$build/findings"
+status=0
+summary=()
+for h in "${harnesses[@]}"; do
+  work="$build/corpus/$h"
+  rm -rf "$work" && mkdir -p "$work" && cp fuzz/corpus/"$h"/* "$work"/
+  log="$build/$h.log"
+  # -timeout: one input taking longer than 10 s is a hang; -rss_limit_mb: a memory blow-up.
+  if ! "$build/fuzz/$h" "$work" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \
+      -artifact_prefix="$build/findings/$h-" -print_final_stats=1 > "$log" 2>&1; then
+    status=1
+    echo "fuzz: $h FAILED (log $log):"
+    grep -m 20 -E "ERROR|WRONG|SUMMARY|runtime error|Test unit written" "$log" || tail -20 "$log"
+  fi
+  runs=$(grep -m1 -oE "stat::number_of_executed_units: *[0-9]+" "$log" | grep -oE "[0-9]+$" || echo "?")
+  summary+=("$h: $runs executions in ${seconds} s")
+done
+printf 'fuzz: %s\n' "${summary[@]}"
+exit $status

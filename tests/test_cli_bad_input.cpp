@@ -1,0 +1,180 @@
+// Bad input through the command: every line gets an answer or a clear error naming the field,
+// the other lines are still answered, the exit status is 2, and nothing crashes.
+#define BOOST_TEST_MODULE cli_bad_input
+#include <boost/test/unit_test.hpp>
+
+#include <sstream>
+
+#include "query.hpp"
+
+using namespace certcyl;
+using namespace certcyl::cli;
+
+namespace {
+
+struct Run {
+  int status;
+  std::vector<json> lines;
+};
+
+Run run(const std::string& input) {
+  std::istringstream in(input);
+  std::ostringstream out;
+  Run r;
+  r.status = run_query(in, out, QueryOptions{}, 1);
+  std::istringstream produced(out.str());
+  for (std::string line; std::getline(produced, line);) r.lines.push_back(json::parse(line));
+  return r;
+}
+
+const std::string cyl5 = R"("cylinder": {"p0": [0,0,0], "p1": [0,0,2], "radius": 5})";
+
+// A point query with the given x (JSON text), id `id`.
+std::string point_with_x(int id, const std::string& x) {
+  return R"({"id": )" + std::to_string(id) + R"(, "query": "point_cylinder", "point": [)" + x + ", 0, 1], " + cyl5 + "}";
+}
+
+// (3, 4, 1) is on the wall of cyl5: touching.
+const std::string good = R"({"id": "good", "query": "point_cylinder", "point": [3, 4, 1], )" + cyl5 + "}";
+
+std::string error_of(const json& line) { return line.contains("error") ? line["error"].get<std::string>() : std::string(); }
+
+// Runs `bad` between two good lines: three output lines, the good ones answered "touching".
+json sandwiched(const std::string& bad) {
+  const Run r = run(good + "\n" + bad + "\n" + good + "\n");
+  BOOST_TEST(r.status == 2);
+  BOOST_REQUIRE(r.lines.size() == 3u);
+  for (int i : {0, 2}) {
+    BOOST_TEST(r.lines[i]["id"] == "good");
+    BOOST_TEST(r.lines[i]["answer"] == "touching");
+  }
+  BOOST_TEST(r.lines[1].contains("error"));
+  BOOST_TEST(!r.lines[1].contains("answer"));
+  return r.lines[1];
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(malformed_and_truncated_json) {
+  BOOST_TEST(error_of(sandwiched(R"({"id": 1, "query": "point_cylinder", "point": [3, 4)")).find("malformed JSON") == 0u);
+  BOOST_TEST(error_of(sandwiched(R"({"id": 1 "query": 2})")).find("malformed JSON") == 0u);
+  BOOST_TEST(error_of(sandwiched(good.substr(0, good.size() / 2))).find("malformed JSON") == 0u);
+  BOOST_TEST(error_of(sandwiched("{")).find("malformed JSON") == 0u);
+  BOOST_TEST(error_of(sandwiched("[1, 2, 3]")).find("expected a JSON object") == 0u);
+  BOOST_TEST(error_of(sandwiched("null")).find("expected a JSON object") == 0u);
+  BOOST_TEST(error_of(sandwiched(R"("just a string")")).find("expected a JSON object") == 0u);
+  // The id of a malformed line is unknown: null.
+  BOOST_TEST(sandwiched(R"({"id": 7, "query": )")["id"].is_null());
+}
+
+BOOST_AUTO_TEST_CASE(empty_input_and_blank_lines) {
+  const Run empty = run("");
+  BOOST_TEST(empty.status == 0);
+  BOOST_TEST(empty.lines.empty());
+  const Run blanks = run("\n   \n\t\n" + good + "\n\n");
+  BOOST_TEST(blanks.status == 0);
+  BOOST_REQUIRE(blanks.lines.size() == 1u);
+  BOOST_TEST(blanks.lines[0]["answer"] == "touching");
+  // A line with no newline at the end is still answered; a CR before the newline is dropped.
+  const Run crlf = run(good + "\r\n" + good);
+  BOOST_TEST(crlf.status == 0);
+  BOOST_TEST(crlf.lines.size() == 2u);
+}
+
+BOOST_AUTO_TEST_CASE(huge_numbers) {
+  // A JSON literal beyond binary64 (1e308 * 10) is not a finite double: the parser rejects it
+  // or the reader does, naming the field.
+  for (const char* x : {"1e309", "1e400", "-1e999", "1e99999999999"}) {
+    const std::string e = error_of(sandwiched(point_with_x(1, x)));
+    BOOST_TEST_INFO(x << ": " << e);
+    BOOST_TEST((e.find("point[0]") == 0u || e.find("malformed JSON") == 0u));
+  }
+  // 1e308 is a finite double: answered (outside the cylinder of radius 5: separated).
+  const Run big = run(point_with_x(1, "1e308") + "\n");
+  BOOST_TEST(big.status == 0);
+  BOOST_TEST(big.lines.at(0)["answer"] == "separated");
+  // As strings these are exact rationals: "1e400" is valid (far outside), exponents beyond the
+  // parser's limit (10^100000) are rejected with the field named.
+  for (const char* x : {R"("1e308")", R"("1e400")", R"("-1e100000")", R"("0x1p400000")"}) {
+    const Run r = run(point_with_x(2, x) + "\n");
+    BOOST_TEST_INFO(x);
+    BOOST_TEST(r.lines.at(0)["answer"] == "separated");
+  }
+  for (const char* x : {R"("1e100001")", R"("1e99999999999999999999")", R"("0x1p400001")", R"("1e-100001")"}) {
+    const std::string e = error_of(sandwiched(point_with_x(3, x)));
+    BOOST_TEST_INFO(x << ": " << e);
+    BOOST_TEST(e.find("point[0]") == 0u);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(subnormals_are_valid) {
+  // The smallest subnormal, as a JSON number and as hexfloat and decimal strings: x is tiny,
+  // so (x, 0, 1) is strictly inside the cylinder of radius 5 (overlapping).
+  for (const char* x : {"4.9406564584124654e-324", "5e-324", R"("0x1p-1074")", R"("0x0.0000000000001p-1022")",
+                        R"("4.9406564584124654e-324")", "2.2250738585072009e-308", "-0.0"}) {
+    const Run r = run(point_with_x(4, x) + "\n");
+    BOOST_TEST_INFO(x);
+    BOOST_TEST(r.status == 0);
+    BOOST_TEST(r.lines.at(0)["answer"] == "overlapping");
+  }
+}
+
+BOOST_AUTO_TEST_CASE(strings_that_are_not_numbers) {
+  for (const char* x : {R"("abc")", R"("")", R"("1/0")", R"("0x")", R"("1e")", R"("--1")", R"("1.2.3")", R"("NaN")",
+                        R"("inf")", R"(" 1")", R"("1/")", R"("0x1p")"}) {
+    const std::string e = error_of(sandwiched(point_with_x(5, x)));
+    BOOST_TEST_INFO(x << ": " << e);
+    BOOST_TEST(e.find("point[0]") == 0u);
+  }
+  // Values of the wrong kind name the field too.
+  for (const char* x : {"true", "null", "[1]", R"({"x": 1})"}) {
+    const std::string e = error_of(sandwiched(point_with_x(6, x)));
+    BOOST_TEST_INFO(x << ": " << e);
+    BOOST_TEST(e.find("point[0]: expected a number") == 0u);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(deeply_nested_values) {
+  // Nested as the whole line, and as a field's value: an error, no stack overflow.
+  for (std::size_t depth : {1000u, 100000u, 1000000u}) {
+    const std::string nest = std::string(depth, '[') + std::string(depth, ']');
+    BOOST_TEST_INFO("depth " << depth);
+    BOOST_TEST(!error_of(sandwiched(nest)).empty());
+    const std::string in_field = point_with_x(7, nest);
+    const std::string e = error_of(sandwiched(in_field));
+    BOOST_TEST_INFO(e.substr(0, 200));
+    BOOST_TEST((e.find("point[0]") == 0u || e.find("nested") != std::string::npos));
+    const std::string objects = R"({"id": 8, "query": "point_cylinder", "extra": )" + [&] {
+      std::string s;
+      for (std::size_t i = 0; i < depth; ++i) s += R"({"a":)";
+      return s + "1" + std::string(depth, '}');
+    }() + "}";
+    BOOST_TEST(!error_of(sandwiched(objects)).empty());
+  }
+  // Unclosed nesting (truncated) as well.
+  BOOST_TEST(!error_of(sandwiched(std::string(100000, '['))).empty());
+}
+
+BOOST_AUTO_TEST_CASE(binary_garbage) {
+  std::string garbage;
+  for (int i = 0; i < 4096; ++i) garbage += static_cast<char>((i * 7919 + 13) % 256 == '\n' ? 0 : (i * 7919 + 13) % 256);
+  BOOST_TEST(error_of(sandwiched(garbage)).find("malformed JSON") == 0u);
+  BOOST_TEST(error_of(sandwiched(std::string("\0\0\0\x01\xff", 5))).find("malformed JSON") == 0u);
+  // Invalid UTF-8 inside a string value: the error line is still valid JSON (run() parsed it).
+  const std::string bad_utf8 = R"({"id": "\u00e9", "query": "no)" + std::string("\xff\xfe") + R"("})";
+  BOOST_TEST(!error_of(sandwiched(bad_utf8)).empty());
+  const std::string bad_key = R"({"id": 9, "query": "point_cylinder", "point": [3, 4, 1], "cylinder": {"p0": [0,0,0], "p1": [0,0,2], "radius": 5, ")" +
+                              std::string("\xc3\x28") + R"(": 1}})";
+  BOOST_TEST(!error_of(sandwiched(bad_key)).empty());
+}
+
+BOOST_AUTO_TEST_CASE(errors_name_the_field) {
+  BOOST_TEST(error_of(sandwiched(R"({"id": 1, "query": "point_cylinder", "point": [3, 4], )" + cyl5 + "}")).find("point:") == 0u);
+  BOOST_TEST(error_of(sandwiched(R"({"id": 1, "query": "point_cylinder", "point": [3, 4, 1]})")).find("cylinder: missing") == 0u);
+  BOOST_TEST(error_of(sandwiched(R"({"id": 1, "query": "point_cylinder", "point": [3, 4, 1], "cylinder": {"p0": [0,0,0], "p1": [0,0,2], "radius": -1}})"))
+                 .find("cylinder.radius") == 0u);
+  BOOST_TEST(error_of(sandwiched(R"({"id": 1, "query": 5})")).find("query") == 0u);
+  BOOST_TEST(error_of(sandwiched(R"({"id": 1})")).find("query: missing") == 0u);
+  // Every error line echoes the id it could read.
+  BOOST_TEST(sandwiched(R"({"id": [1, "x"], "query": "nope"})")["id"] == json::parse(R"([1, "x"])"));
+}
