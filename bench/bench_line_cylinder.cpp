@@ -1,8 +1,11 @@
 // Line against circular cylinder: ns per query for each method and number type, on random
 // lines and on near-tangent lines (distance to the axis within a few ulps of the radius).
-// The certified query is measured twice: the decision alone (answer and features, filtered)
-// and the full result (exact endpoints and their correctly rounded doubles). The ratio to the
-// robust double method is computed from these figures in the same run.
+// The certified query is measured twice: the decision alone (answer and features, filtered:
+// semi-static double stage, Interval_nt, Gmpq; the fraction each stage decided is reported as
+// static / interval / exact) and the full result (exact endpoints and their correctly rounded
+// doubles), with double and with Rational input (binary64 values, so the same path after a
+// check). Run the three side by side (--benchmark_filter='robust|certified') and take the
+// ratios from one run: the machine's load moves all figures together.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -58,28 +61,68 @@ void BM_robust_double(benchmark::State& state) {
   }
 }
 
+void report_stages(benchmark::State& state, const LineStageCounter& c) {
+  const double n = static_cast<double>(c.calls);
+  state.counters["static"] = static_cast<double>(c.semi_static) / n;
+  state.counters["interval"] = static_cast<double>(c.interval) / n;
+  state.counters["exact"] = static_cast<double>(c.exact) / n;
+}
+
 void BM_certified_decision(benchmark::State& state) {
+  const auto& in = instances(state.range(0) != 0);
+  std::size_t i = 0;
+  LineStageCounter counter;
+  for (auto _ : state) {
+    const auto& x = in[i++ & 1023];
+    benchmark::DoNotOptimize(certified_line_cylinder_shape(x.line, x.cyl, counter));
+  }
+  report_stages(state, counter);
+}
+
+// The decision with Interval_nt as the first stage (the static stage left out): the filter
+// as it was before the semi-static stage, for comparison.
+void BM_certified_decision_interval_first(benchmark::State& state) {
   const auto& in = instances(state.range(0) != 0);
   std::size_t i = 0;
   FilterCounter counter;
   for (auto _ : state) {
     const auto& x = in[i++ & 1023];
-    benchmark::DoNotOptimize(certified_line_cylinder_shape(x.line, x.cyl, counter));
+    const detail::LineInput<double> li = detail::line_input(x.line);
+    benchmark::DoNotOptimize(filtered_call(
+        [&]<class NT>() { return detail::line_shape(detail::line_quadric_in<NT>(li, x.cyl), li.range); }, counter));
   }
-  state.counters["exact_fraction"] = static_cast<double>(counter.exact) / static_cast<double>(counter.calls);
+  state.counters["exact"] = static_cast<double>(counter.exact) / static_cast<double>(counter.calls);
 }
 
 void BM_certified_full(benchmark::State& state) {
   const auto& in = instances(state.range(0) != 0);
   std::size_t i = 0;
-  FilterCounter counter;
+  LineStageCounter counter;
   for (auto _ : state) {
     const auto& x = in[i++ & 1023];
     const auto r = certified_line_cylinder(x.line, x.cyl);
-    counter += r.counter;
+    counter.count(r.stage);
     benchmark::DoNotOptimize(r);
   }
-  state.counters["exact_fraction"] = static_cast<double>(counter.exact) / static_cast<double>(counter.calls);
+  report_stages(state, counter);
+}
+
+void BM_certified_full_rational_input(benchmark::State& state) {
+  const auto& in = instances(state.range(0) != 0);
+  std::vector<std::pair<Line<Rational>, Cylinder<Rational>>> conv;
+  for (const auto& x : in) {
+    auto f = [](double v) { return Rational(v); };
+    conv.push_back({x.line.map(f), x.cyl.map(f)});
+  }
+  std::size_t i = 0;
+  LineStageCounter counter;
+  for (auto _ : state) {
+    const auto& x = conv[i++ & 1023];
+    const auto r = certified_line_cylinder(x.first, x.second);
+    counter.count(r.stage);
+    benchmark::DoNotOptimize(r);
+  }
+  report_stages(state, counter);
 }
 
 template <class NT>
@@ -136,7 +179,9 @@ void BM_gullotti_gmpfr113(benchmark::State& state) {
 // Argument: 0 = random lines, 1 = near-tangent lines.
 BENCHMARK(BM_robust_double)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_decision)->Arg(0)->Arg(1);
+BENCHMARK(BM_certified_decision_interval_first)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_full)->Arg(0)->Arg(1);
+BENCHMARK(BM_certified_full_rational_input)->Arg(0)->Arg(1);
 BENCHMARK(BM_shene<double>)->Arg(0)->Arg(1);
 BENCHMARK(BM_gullotti<double>)->Arg(0)->Arg(1);
 BENCHMARK(BM_shene<long double>)->Arg(0)->Arg(1);

@@ -1,9 +1,11 @@
 // Triangle against cylinder: ns per query, the Eberly seed's method in double against the
 // certified predicate, on the same binary64 inputs, side by side.
 //   eberly_double           seeds/eberly_triangle_cylinder.hpp in double (not certified)
-//   certified_answer        classify_triangle_cylinder on binary64 input: Interval_nt filter,
-//                           Gmpq where undecided (the counter "exact" is the fraction)
-//   certified_answer_gmpq   the same on Rational (Gmpq) input: adds the conversions to intervals
+//   certified_answer        classify_triangle_cylinder on binary64 input: semi-static double
+//                           filter, then Interval_nt, then Mpzf; the counters give the fraction
+//                           of queries each stage decided (static, interval, exact)
+//   certified_answer_gmpq   the same on Rational (Gmpq) input: binary64 values are detected
+//                           and take the double path
 //   certified_certificate   certified_triangle_cylinder: the answer plus its exact, checked
 //                           certificate (witness point, features, separating plane)
 // Inputs: "random" (coordinates uniform in [-2, 2], radius in [0.1, 1.5]) and "near" (contacts
@@ -93,34 +95,45 @@ void eberly_double(benchmark::State& state, const Inputs& in) {
   state.SetItemsProcessed(state.iterations());
 }
 
+void stage_counters(benchmark::State& state, const TriangleFilterStages& st) {
+  const auto calls = static_cast<double>(st.calls);
+  state.counters["static"] = static_cast<double>(st.semi_static) / calls;
+  state.counters["interval"] = static_cast<double>(st.interval) / calls;
+  state.counters["exact"] = static_cast<double>(st.exact) / calls;
+}
+
 void certified_answer(benchmark::State& state, const Inputs& in) {
   std::size_t i = 0;
-  FilterCounter fc;
+  TriangleFilterStages st;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(classify_triangle_cylinder(in.td[i], in.cd[i], fc));
+    benchmark::DoNotOptimize(classify_triangle_cylinder(in.td[i], in.cd[i], st));
     i = (i + 1) % in.td.size();
   }
-  state.counters["exact"] = static_cast<double>(fc.exact) / static_cast<double>(fc.calls);
+  stage_counters(state, st);
   state.SetItemsProcessed(state.iterations());
 }
 
 void certified_answer_gmpq(benchmark::State& state, const Inputs& in) {
   std::size_t i = 0;
-  FilterCounter fc;
+  TriangleFilterStages st;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(classify_triangle_cylinder(in.tq[i], in.cq[i], fc));
+    benchmark::DoNotOptimize(classify_triangle_cylinder(in.tq[i], in.cq[i], st));
     i = (i + 1) % in.tq.size();
   }
-  state.counters["exact"] = static_cast<double>(fc.exact) / static_cast<double>(fc.calls);
+  stage_counters(state, st);
   state.SetItemsProcessed(state.iterations());
 }
 
 void certified_certificate(benchmark::State& state, const Inputs& in) {
   std::size_t i = 0;
+  TriangleFilterStages st;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(certified_triangle_cylinder(in.tq[i], in.cq[i]));
+    const TriangleCylinderResult r = certified_triangle_cylinder(in.tq[i], in.cq[i]);
+    st += r.stages;
+    benchmark::DoNotOptimize(r);
     i = (i + 1) % in.tq.size();
   }
+  stage_counters(state, st);
   state.SetItemsProcessed(state.iterations());
 }
 

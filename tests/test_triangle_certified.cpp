@@ -206,8 +206,10 @@ BOOST_AUTO_TEST_CASE(plane_containing_axis) {
 BOOST_AUTO_TEST_CASE(pentagon_pierced) {
   const Triangle<Rational> t = tri(pt(-10, -10, -1), pt(10, -10, 1), pt(0, 10, 3));
   expect_answer(t, Z, Answer::overlapping);
+  // No vertex is inside: the witness is a point of the face strictly inside Z.
   const Res r = certified_triangle_cylinder(t, Z);
-  BOOST_TEST(r.squared_distance == 0);
+  BOOST_TEST_REQUIRE(r.witness.has_value());
+  BOOST_TEST(classify_point(*r.witness, Z) == Side::inside);
 }
 
 // Degenerate triangles: a segment and a point.
@@ -399,4 +401,17 @@ BOOST_AUTO_TEST_CASE(filter_counter) {
              Answer::touching);
   BOOST_TEST(fc.calls == 3u);
   BOOST_TEST(fc.exact == 1u);
+  // The stages: generic binary64 input is decided by the static filter; an exact contact in
+  // binary64 (the edge on the wall) never is (the filter never answers zero), intervals decide
+  // it (small integers: point intervals); with 1/3 the contact needs Gmpq.
+  TriangleFilterStages st;
+  BOOST_TEST(classify_triangle_cylinder(tri(pt(Q("1/4"), 0, 1), pt(3, 0, 1), pt(3, 1, 1)), Z, st) == Answer::overlapping);
+  BOOST_TEST(st.semi_static == 1u);
+  BOOST_TEST(classify_triangle_cylinder(tri(pt(1, -1, 1), pt(1, 1, 1), pt(2, 0, 1)), Z, st) == Answer::touching);
+  BOOST_TEST(st.semi_static == 1u);
+  BOOST_TEST(st.interval == 1u);
+  BOOST_TEST(classify_triangle_cylinder(tri(pt(Q("1/3"), -1, 1), pt(Q("1/3"), 1, 1), pt(2, 0, 1)), third, st) ==
+             Answer::touching);
+  BOOST_TEST(st.calls == 3u);
+  BOOST_TEST(st.exact == 1u);
 }

@@ -27,18 +27,19 @@
 //   optimiser        smoothed Newton in double on the plane D.Delta = 1 (detail/cylinder_optimiser.hpp),
 //                    giving a direction and a dual point, checked in intervals then in Gmpq.
 //   touching_exact   rational candidate normals (A0, A1, A0 x A1, the parts of Delta orthogonal to
-//                    the axes, a small-height rational reconstruction of the optimiser's
-//                    direction), each proved or rejected exactly.
+//                    the axes, the exact rim-wall and rim-rim normals of
+//                    detail/cylinder_rim_contacts.hpp, a small-height rational reconstruction of
+//                    the optimiser's direction), each proved or rejected exactly.
 //   gmpfr            the optimiser at 128, 256, ... bits up to options.max_precision; its direction
 //                    and point, converted exactly to rationals, are checked in Gmpq, and its
 //                    direction is reconstructed as a candidate normal for a touching proof.
 // Undecided results carry the certified bounds phi_lower <= phi* <= phi_upper, so
 // |phi* - 1| <= distance_bound().
 //
-// Touching is proved for every contact whose normal is a rational direction: cap-cap, cap-wall,
-// wall-wall (crossing or parallel axes) and rim-cap always have one; rim-wall and rim-rim have one
-// when the contact point's normal is rational (for instance a rational contact point). A rim-wall
-// or rim-rim contact with an irrational normal is answered undecided with the bound.
+// Touching is proved for every contact type: with rational data every touching pair touches with
+// a rational normal at a rational point (the theorem of detail/cylinder_rim_contacts.hpp), and
+// the touching_exact stage computes the candidates of every type exactly (cap-cap, cap-wall,
+// wall-wall, rim-cap from the axes; rim-wall and rim-rim from exact rational roots).
 //
 // Preconditions: valid cylinders (validate(): radius > 0, p0 != p1); the double overload also
 // needs finite values, and treats every double as the exact rational it denotes.
@@ -422,6 +423,9 @@ class CylinderCylinderSolver {
     const std::array<Vec3<Rational>, 5> structural{e.A0, e.A1, cross(e.A0, e.A1), e.AA0 * e.T - dot(e.A0, e.T) * e.A0,
                                                    e.AA1 * e.T - dot(e.A1, e.T) * e.A1};
     for (const Vec3<Rational>& D : structural)
+      if (try_touching(D)) return true;
+    // Rim-wall and rim-rim normals, exactly (detail/cylinder_rim_contacts.hpp).
+    for (const Vec3<Rational>& D : rim_contact_normals(e))
       if (try_touching(D)) return true;
     if (optimum_) {
       const Vec3<Rational> D = optimum_->map([](double x) { return Rational(x); });

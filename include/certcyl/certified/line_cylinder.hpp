@@ -17,9 +17,15 @@
 // Method (design note, sections 3 and 5): the division-free quadratic of the tube with its
 // cancellation-free discriminant, the slab of the caps, and a sign skeleton that decides
 // every comparison of symbolic bounds by the sign of p + q sqrt(disc)
-// (certified/detail/line_shape.hpp). Filtered: the skeleton runs in Interval_nt first and in
-// Gmpq only where an interval sign is undecided (ties, tangencies, on-boundary cases, near
-// misses); `FilterCounter` records the fall-backs.
+// (certified/detail/line_shape.hpp). Filtered in three stages: for a circular cylinder with
+// binary64 input, the semi-static double stage (certified/detail/line_static_filter.hpp:
+// division-free decision polynomials of degree <= 6 with proved forward error bounds); then
+// the skeleton in Interval_nt; then in Gmpq where an interval sign is undecided (ties,
+// tangencies, on-boundary cases, near misses). Rational input whose numbers are all binary64
+// values takes the double path. `FilterCounter` records the Gmpq fall-backs,
+// `LineStageCounter` / `CertifiedLineResult::stage` the stage that decided.
+// Exact endpoints: the quadric in Mpzf from binary64 input (Gmpq otherwise), one Gmpq
+// normalisation per endpoint, the nearest double from an MPFR enclosure.
 //
 // Inputs: exact Rational primitives (the command's input) or double primitives (each double
 // is taken as the exact binary64 value it holds, so the answer is the exact one for those
@@ -31,15 +37,21 @@
 //       -> CertifiedLineResult: answer, endpoints (exact, nearest double, features), counter
 //   certified_line_cylinder_shape(line | ray | segment, cylinder | elliptic cylinder, counter)
 //       -> detail::LineShape: the answer and the features without building the exact
-//          endpoints (the fast path; the same decision as above).
+//          endpoints (the fast path; the same decision as above). counter: FilterCounter or
+//          LineStageCounter (decisions per stage).
 #pragma once
 
+#include <cmath>
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <type_traits>
+#include <utility>
 
 #include "certcyl/answer.hpp"
 #include "certcyl/certified/detail/line_shape.hpp"
+#include "certcyl/certified/detail/line_static_filter.hpp"
 #include "certcyl/certified/detail/quadratic_number.hpp"
 #include "certcyl/filtered.hpp"
 #include "certcyl/line_result.hpp"
@@ -59,11 +71,34 @@ struct CertifiedEndpoint {
   std::string exact() const { return value.to_string(); }
 };
 
+// Which stage of the filter decided: the semi-static double stage (circular cylinder, binary64
+// input), Interval_nt, or exact Gmpq.
+enum class LineStage : unsigned char { semi_static, interval, exact };
+
+inline constexpr std::string_view to_string(LineStage s) {
+  return s == LineStage::semi_static ? "semi_static" : (s == LineStage::interval ? "interval" : "exact");
+}
+
+// How many decisions each stage took.
+struct LineStageCounter {
+  std::uint64_t calls = 0, semi_static = 0, interval = 0, exact = 0;
+
+  void count(LineStage s) {
+    ++calls;
+    ++(s == LineStage::semi_static ? semi_static : (s == LineStage::interval ? interval : exact));
+  }
+  LineStageCounter& operator+=(const LineStageCounter& o) {
+    calls += o.calls, semi_static += o.semi_static, interval += o.interval, exact += o.exact;
+    return *this;
+  }
+};
+
 struct CertifiedLineResult {
   Answer answer = Answer::separated;
   LineRange range = LineRange::line;
   std::optional<CertifiedEndpoint> in, out;  // set unless separated; equal values for a point
   FilterCounter counter;                      // this query: calls = 1, exact = 1 if intervals could not decide
+  LineStage stage = LineStage::exact;         // the stage that decided
 };
 
 namespace detail {
@@ -98,22 +133,109 @@ LineQuadric<NT> line_quadric_in(const LineInput<In>& in, const Solid& solid) {
   return line_quadric(O, d, solid.map([](const In& x) { return input_to<NT>(x); }));
 }
 
+// The input as binary64 values when every number is one; the whole computation then starts
+// from doubles, which the intervals, Mpzf and Gmpq take exactly. q = m 2^e with m odd is a
+// binary64 value iff m has at most 53 bits, e >= -1074 and m 2^e < 2^1024 (for m < 2^53 and
+// e >= -1074, m 2^e is a normal or a subnormal double).
+inline bool binary64_value(const Rational& q, double& out) {
+  const mpz_srcptr num = mpq_numref(q.mpq()), den = mpq_denref(q.mpq());
+  if (mpz_sgn(num) == 0) {
+    out = 0;
+    return true;
+  }
+  const auto den_shift = mpz_scan1(den, 0);
+  if (mpz_sizeinbase(den, 2) != den_shift + 1) return false;  // the denominator is not 2^k
+  const auto low = mpz_scan1(num, 0), bits = mpz_sizeinbase(num, 2);
+  if (bits - low > 53) return false;
+  const long e = static_cast<long>(low) - static_cast<long>(den_shift);
+  if (e < -1074 || e + static_cast<long>(bits - low) > 1024) return false;
+  // m = |num| >> low fits in 53 bits: read it from the (at most two) limbs it spans.
+  static_assert(GMP_NUMB_BITS == 64, "64-bit limbs");
+  const auto limb = static_cast<mp_size_t>(low / 64);
+  const unsigned shift = low % 64;
+  std::uint64_t m = mpz_getlimbn(num, limb) >> shift;
+  if (shift != 0 && limb + 1 < static_cast<mp_size_t>(mpz_size(num))) m |= mpz_getlimbn(num, limb + 1) << (64 - shift);
+  const double magnitude = std::ldexp(static_cast<double>(m), static_cast<int>(e));  // both steps exact
+  out = mpz_sgn(num) < 0 ? -magnitude : magnitude;
+  return true;
+}
+
+template <template <class> class Solid>
+std::optional<std::pair<LineInput<double>, Solid<double>>> as_binary64(const LineInput<Rational>& in, const Solid<Rational>& solid) {
+  bool exact = true;
+  auto to_double = [&](const Rational& q) {
+    double x = 0;
+    exact = exact && binary64_value(q, x);
+    return x;
+  };
+  LineInput<double> din{in.origin.map(to_double), in.second.map(to_double), in.second_is_point, in.range};
+  Solid<double> dsolid = solid.map(to_double);
+  if (!exact) return std::nullopt;
+  return std::pair{din, dsolid};
+}
+
+// The filtered decision: semi-static double stage (circular cylinders), then Interval_nt, then
+// Gmpq. Input in double (exact binary64 values) or Rational.
+template <class In, class Solid>
+LineShape certified_shape(const LineInput<In>& in, const Solid& solid, LineStage& stage) {
+  if constexpr (std::is_same_v<In, Rational>) {
+    if (const auto d = as_binary64(in, solid)) return certified_shape(d->first, d->second, stage);
+  } else if constexpr (std::is_same_v<Solid, Cylinder<double>>) {
+    StaticCircularSigns s(in.origin, in.second, in.second_is_point, solid);
+    if (s.usable()) {
+      const LineShape shape = line_shape_from(s, in.range);
+      if (!s.undecided()) {
+        stage = LineStage::semi_static;
+        return shape;
+      }
+    }
+  }
+  FilterCounter counter;
+  const LineShape shape =
+      filtered_call([&]<class NT>() { return line_shape(line_quadric_in<NT>(in, solid), in.range); }, counter);
+  stage = counter.exact != 0 ? LineStage::exact : LineStage::interval;
+  return shape;
+}
+
 template <class In, class Solid>
 LineShape certified_shape(const LineInput<In>& in, const Solid& solid, FilterCounter& counter) {
-  return filtered_call([&]<class NT>() { return line_shape(line_quadric_in<NT>(in, solid), in.range); }, counter);
+  LineStage stage{};
+  const LineShape shape = certified_shape(in, solid, stage);
+  ++counter.calls;
+  if (stage == LineStage::exact) ++counter.exact;
+  return shape;
+}
+
+// The exact quadric as rationals. From binary64 input it is computed in Mpzf (dyadic
+// integers, no normalisation per operation; line_quadric is division-free) and converted once.
+template <class In, class Solid>
+LineQuadric<Rational> exact_quadric(const LineInput<In>& in, const Solid& solid) {
+  if constexpr (std::is_same_v<In, double>) {
+    const LineQuadric<CGAL::Mpzf> m = line_quadric_in<CGAL::Mpzf>(in, solid);
+    auto q = [](const CGAL::Mpzf& x) { return static_cast<Rational>(x); };
+    return {q(m.a), q(m.b), q(m.c), q(m.disc), q(m.sw), q(m.sd), q(m.H)};
+  } else {
+    return line_quadric_in<Rational>(in, solid);
+  }
 }
 
 template <class In, class Solid>
 CertifiedLineResult certified_result(const LineInput<In>& in, const Solid& solid) {
+  if constexpr (std::is_same_v<In, Rational>) {
+    if (const auto d = as_binary64(in, solid)) return certified_result(d->first, d->second);
+  }
   CertifiedLineResult result;
   result.range = in.range;
-  const LineShape shape = certified_shape(in, solid, result.counter);
+  const LineShape shape = certified_shape(in, solid, result.stage);
+  result.counter.calls = 1;
+  result.counter.exact = result.stage == LineStage::exact ? 1 : 0;
   result.answer = shape.answer;
   if (shape.answer == Answer::separated) return result;
-  const LineQuadric<Rational> q = line_quadric_in<Rational>(in, solid);
+  const LineQuadric<Rational> q = exact_quadric(in, solid);
+  BoundValuesExact value(q, shape.tube);
   auto endpoint = [&](BoundKind k, LineFeature feature, LineFeature surface) {
     CertifiedEndpoint e;
-    e.value = bound_value(k, q, shape.tube);
+    e.value = value(k);
     e.nearest = nearest_double(e.value);
     e.feature = feature;
     e.surface = surface;
@@ -156,10 +278,18 @@ CertifiedLineResult certified_line_cylinder(const Segment<In>& seg, const Ellipt
   return detail::certified_result(detail::line_input(seg), e);
 }
 
-// The decision alone (answer and features), accumulating the filter statistics in `counter`.
+// The decision alone (answer and features), accumulating the filter statistics in `counter`
+// (calls, and exact = the decisions that needed Gmpq) or, per stage, in a LineStageCounter.
 template <class LineLike, class Solid>
 detail::LineShape certified_line_cylinder_shape(const LineLike& line, const Solid& solid, FilterCounter& counter) {
   return detail::certified_shape(detail::line_input(line), solid, counter);
+}
+template <class LineLike, class Solid>
+detail::LineShape certified_line_cylinder_shape(const LineLike& line, const Solid& solid, LineStageCounter& counter) {
+  LineStage stage{};
+  const detail::LineShape shape = detail::certified_shape(detail::line_input(line), solid, stage);
+  counter.count(stage);
+  return shape;
 }
 
 }  // namespace certcyl

@@ -20,8 +20,9 @@
 // rational: the design note's Q(sqrt) for rim-cap contacts is not needed once (a) holds.
 //
 // Contact types by the support sets: cap-cap, cap-wall, wall-wall, rim-cap, rim-wall, rim-rim.
-// A rim-wall or rim-rim contact whose normal is irrational is out of reach of this file; the
-// caller answers undecided there (with a certified bound on |phi* - 1|).
+// With rational data every touching pair has a rational normal (the theorem of
+// detail/cylinder_rim_contacts.hpp), so proving from rational candidates loses nothing; the
+// rim-wall and rim-rim candidates are computed exactly there (rim_contact_normals).
 #pragma once
 
 #include <CGAL/Gmpq.h>
@@ -32,6 +33,7 @@
 #include <string>
 
 #include "certcyl/certified/detail/cylinder_certificates.hpp"
+#include "certcyl/certified/detail/cylinder_rim_contacts.hpp"
 
 namespace certcyl {
 
@@ -54,18 +56,6 @@ struct CylinderContact {
 };
 
 namespace detail {
-
-// The square root of q when q is the square of a rational.
-inline std::optional<Rational> rational_sqrt(const Rational& q) {
-  if (q < 0) return std::nullopt;
-  mpz_srcptr n = mpq_numref(q.mpq());
-  mpz_srcptr d = mpq_denref(q.mpq());
-  if (!mpz_perfect_square_p(n) || !mpz_perfect_square_p(d)) return std::nullopt;
-  CGAL::Gmpz rn, rd;
-  mpz_sqrt(rn.mpz(), n);
-  mpz_sqrt(rd.mpz(), d);
-  return Rational(rn, rd);
-}
 
 struct SupportSet {
   CylinderFeature feature;

@@ -23,6 +23,7 @@
 // on the wall), sw in {0, H} with sd = 0 (line in a cap plane).
 #pragma once
 
+#include <optional>
 #include <stdexcept>
 #include <type_traits>
 
@@ -156,35 +157,60 @@ class BoundValues {
   NT centre_{}, half_{}, cap0_{}, cap1_{};
 };
 
+// The sign source of the skeleton for a quadric in a number type NT (Interval_nt, Gmpq): the
+// signs of its coefficients, and BoundValues for the comparisons of bounds. The semi-static
+// double stage (certified/detail/line_static_filter.hpp) offers the same interface.
 template <class NT>
-LineShape line_shape(const LineQuadric<NT>& q, LineRange range) {
+class QuadricSigns {
+ public:
+  explicit QuadricSigns(const LineQuadric<NT>& q) : q_(q) {}
+  CGAL::Sign sign_a() const { return nt::sign(q_.a); }
+  CGAL::Sign sign_c() const { return nt::sign(q_.c); }
+  CGAL::Sign sign_disc() const { return nt::sign(q_.disc); }
+  CGAL::Sign sign_sd() const { return nt::sign(q_.sd); }
+  CGAL::Sign sign_sw() const { return nt::sign(q_.sw); }
+  CGAL::Sign sign_H_minus_sw() const { return nt::sign(NT(q_.H - q_.sw)); }
+  BoundValues<NT> bounds(TubeState tube, SlabState slab) const { return BoundValues<NT>(q_, tube, slab); }
+  // NT either decides every sign or throws (intervals): it never leaves one undecided.
+  static constexpr bool undecided() { return false; }
+
+ private:
+  const LineQuadric<NT>& q_;
+};
+
+// The skeleton over a sign source `s` (QuadricSigns<NT> or the static stage). A source that
+// can give up (`undecided()`) makes the result meaningless; it is then stopped at the next
+// step and the caller discards it.
+template <class Signs>
+LineShape line_shape_from(Signs& s, LineRange range) {
   LineShape shape;
   // Step 1: the tube's parameter set {a t^2 + 2 b t + c <= 0}.
-  if (nt::sign(q.a) == CGAL::ZERO) {
+  if (s.sign_a() == CGAL::ZERO) {
     // else: direction parallel to the axis; b = 0 and the set is all t or nothing.
-    const CGAL::Sign sc = nt::sign(q.c);
+    const CGAL::Sign sc = s.sign_c();
     shape.tube = sc == CGAL::POSITIVE ? TubeState::empty : (sc == CGAL::ZERO ? TubeState::all_boundary : TubeState::all_open);
   } else {
-    const CGAL::Sign sd = nt::sign(q.disc);
+    const CGAL::Sign sd = s.sign_disc();
     shape.tube = sd == CGAL::NEGATIVE ? TubeState::empty : (sd == CGAL::ZERO ? TubeState::point : TubeState::interval);
   }
-  if (shape.tube == TubeState::empty) return shape;
+  if (shape.tube == TubeState::empty || s.undecided()) return shape;
 
   // Step 2: the slab's parameter set {0 <= sw + t sd <= H}.
-  const CGAL::Sign s_sd = nt::sign(q.sd);
+  const CGAL::Sign s_sd = s.sign_sd();
   if (s_sd == CGAL::ZERO) {
-    const CGAL::Sign below = nt::sign(q.sw), above = nt::sign(NT(q.H - q.sw));
+    const CGAL::Sign below = s.sign_sw(), above = s.sign_H_minus_sw();
     if (below == CGAL::NEGATIVE || above == CGAL::NEGATIVE) return shape;
     shape.slab = below == CGAL::ZERO ? SlabState::plane0 : (above == CGAL::ZERO ? SlabState::plane1 : SlabState::all_open);
   } else {
     shape.slab = SlabState::interval;
   }
+  if (s.undecided()) return shape;
   if (shape.tube != TubeState::point && shape.tube != TubeState::interval && shape.slab != SlabState::interval)
     throw std::logic_error("line_shape: zero direction");  // a = 0 and sd = 0 imply d = 0
 
   // Step 3: lower bound = max of the candidate lower bounds, upper = min of the upper ones.
   // Ties keep the earlier candidate: the range first (so a clipped end is reported as such).
-  const BoundValues<NT> values(q, shape.tube, shape.slab);
+  auto&& values = s.bounds(shape.tube, shape.slab);
   const bool has_tube = shape.tube == TubeState::point || shape.tube == TubeState::interval;
   const bool has_slab = shape.slab == SlabState::interval;
   const bool has_range_lo = range != LineRange::line, has_range_hi = range == LineRange::segment;
@@ -203,11 +229,12 @@ LineShape line_shape(const LineQuadric<NT>& q, LineRange range) {
   take(has_range_hi, BoundKind::range_hi, upper, have_upper, CGAL::NEGATIVE);
   take(has_slab, slab_hi, upper, have_upper, CGAL::NEGATIVE);
   take(has_tube, BoundKind::tube_hi, upper, have_upper, CGAL::NEGATIVE);
+  if (s.undecided()) return shape;
   if (!have_upper) throw std::logic_error("line_shape: unbounded interval");  // a ray along the axis is bounded by the slab
 
   // Step 4: empty, a point or an interval.
   const CGAL::Sign width = values.compare(upper, lower);
-  if (width == CGAL::NEGATIVE) return shape;
+  if (width == CGAL::NEGATIVE || s.undecided()) return shape;
   shape.in = lower;
   shape.out = upper;
 
@@ -236,22 +263,49 @@ LineShape line_shape(const LineQuadric<NT>& q, LineRange range) {
   return shape;
 }
 
-// The exact value of a bound (q in Gmpq, the shape decided for it).
-inline QuadraticNumber bound_value(BoundKind k, const LineQuadric<Rational>& q, TubeState tube) {
-  switch (k) {
-    case BoundKind::tube_lo:
-    case BoundKind::tube_hi: {
-      const Rational centre = -q.b / q.a;
-      if (tube == TubeState::point) return {centre, 0, 0};
-      const Rational half = Rational(1) / q.a;
-      return QuadraticNumber::make(centre, k == BoundKind::tube_lo ? Rational(-half) : half, q.disc);
+template <class NT>
+LineShape line_shape(const LineQuadric<NT>& q, LineRange range) {
+  QuadricSigns<NT> s(q);
+  return line_shape_from(s, range);
+}
+
+// The exact values of the bounds (q in Gmpq, the shape decided for it). The two tube roots
+// share their normal form: it is made once, for the upper root, and negated for the lower.
+class BoundValuesExact {
+ public:
+  BoundValuesExact(const LineQuadric<Rational>& q, TubeState tube) : q_(q), tube_(tube) {}
+
+  QuadraticNumber operator()(BoundKind k) {
+    switch (k) {
+      case BoundKind::tube_lo:
+      case BoundKind::tube_hi: {
+        if (!root_) {
+          centre_ = -q_.b / q_.a;
+          root_ = tube_ == TubeState::point ? QuadraticNumber{centre_, 0, 0}
+                                            : QuadraticNumber::make(centre_, Rational(1) / q_.a, q_.disc);
+        }
+        if (k == BoundKind::tube_hi || tube_ == TubeState::point) return *root_;
+        // else: the lower root; a perfect-square radicand has made the upper one rational
+        if (root_->is_rational()) return QuadraticNumber::make(centre_, Rational(-1) / q_.a, q_.disc);
+        return {root_->alpha, Rational(-root_->beta), root_->gamma};
+      }
+      case BoundKind::cap0: return {Rational(-q_.sw / q_.sd), 0, 0};
+      case BoundKind::cap1: return {Rational((q_.H - q_.sw) / q_.sd), 0, 0};
+      case BoundKind::range_lo: return {0, 0, 0};
+      case BoundKind::range_hi: return {1, 0, 0};
     }
-    case BoundKind::cap0: return {Rational(-q.sw / q.sd), 0, 0};
-    case BoundKind::cap1: return {Rational((q.H - q.sw) / q.sd), 0, 0};
-    case BoundKind::range_lo: return {0, 0, 0};
-    case BoundKind::range_hi: return {1, 0, 0};
+    return {};
   }
-  return {};
+
+ private:
+  const LineQuadric<Rational>& q_;
+  TubeState tube_;
+  std::optional<QuadraticNumber> root_;  // the upper root
+  Rational centre_;
+};
+
+inline QuadraticNumber bound_value(BoundKind k, const LineQuadric<Rational>& q, TubeState tube) {
+  return BoundValuesExact(q, tube)(k);
 }
 
 }  // namespace certcyl::detail

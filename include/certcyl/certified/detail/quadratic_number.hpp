@@ -47,12 +47,30 @@ struct QuadraticNumber {
       return {alpha + b * Rational(root), 0, 0};
     }
     // Take out square factors of small primes, for readable output: sqrt(12) = 2 sqrt(3).
-    for (unsigned long p : {2ul, 3ul, 5ul, 7ul, 11ul, 13ul, 17ul, 19ul, 23ul, 29ul, 31ul, 37ul, 41ul, 43ul, 47ul}) {
-      const unsigned long p2 = p * p;
-      while (mpz_divisible_ui_p(nm.mpz(), p2)) {
-        mpz_divexact_ui(nm.mpz(), nm.mpz(), p2);
-        b = b * Rational(static_cast<long>(p));
-      }
+    // Dyadic inputs make nm carry a large power of two: each prime's multiplicity is found at
+    // once (mpz_scan1, mpz_remove) and its even part moved to b in one step.
+    mpq_t& bq = b.mpq();
+    const auto twos = mpz_scan1(nm.mpz(), 0);
+    if (twos >= 2) {
+      mpz_tdiv_q_2exp(nm.mpz(), nm.mpz(), 2 * (twos / 2));
+      mpq_mul_2exp(bq, bq, twos / 2);
+    }
+    // The odd primes up to 47, their squares tested on two word-sized residues.
+    constexpr unsigned long primes[] = {3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47};
+    constexpr unsigned long squares_low = 9ul * 25 * 49 * 121 * 169 * 289 * 361 * 529 * 841;  // 3..29, < 2^64
+    constexpr unsigned long squares_high = 961ul * 1369 * 1681 * 1849 * 2209;                // 31..47
+    const unsigned long residue_low = mpz_fdiv_ui(nm.mpz(), squares_low);
+    const unsigned long residue_high = mpz_fdiv_ui(nm.mpz(), squares_high);
+    CGAL::Gmpz factor, power;
+    for (int i = 0; i < 14; ++i) {
+      const unsigned long p = primes[i];
+      if ((i < 9 ? residue_low : residue_high) % (p * p) != 0) continue;
+      mpz_set_ui(factor.mpz(), p);
+      const auto k = mpz_remove(nm.mpz(), nm.mpz(), factor.mpz());
+      if (k % 2 == 1) mpz_mul_ui(nm.mpz(), nm.mpz(), p);
+      mpz_pow_ui(power.mpz(), factor.mpz(), k / 2);
+      mpz_mul(mpq_numref(bq), mpq_numref(bq), power.mpz());
+      mpq_canonicalize(bq);
     }
     return {alpha, b, nm};
   }
@@ -102,19 +120,15 @@ class MpfrValue {
   MpfrValue(const MpfrValue&) = delete;
   MpfrValue& operator=(const MpfrValue&) = delete;
   mpfr_ptr get() { return x_; }
-  Rational exact() const {
-    Rational q;
-    mpfr_get_q(q.mpq(), x_);
-    return q;
-  }
 
  private:
   mpfr_t x_;
 };
 
-// [lo, hi] containing x, at `bits` of precision, with lo and hi exact rationals.
-inline std::pair<Rational, Rational> enclose(const QuadraticNumber& x, mpfr_prec_t bits) {
-  MpfrValue root_lo(bits), root_hi(bits), lo(bits), hi(bits);
+// [lo, hi] containing x, at the precision of lo and hi.
+inline void enclose(const QuadraticNumber& x, MpfrValue& lo, MpfrValue& hi) {
+  const mpfr_prec_t bits = mpfr_get_prec(lo.get());
+  MpfrValue root_lo(bits), root_hi(bits);
   // Step 1: sqrt(gamma) in [root_lo, root_hi] (gamma rounded outward first).
   mpfr_set_z(root_lo.get(), x.gamma.mpz(), MPFR_RNDD);
   mpfr_set_z(root_hi.get(), x.gamma.mpz(), MPFR_RNDU);
@@ -131,15 +145,29 @@ inline std::pair<Rational, Rational> enclose(const QuadraticNumber& x, mpfr_prec
   // Step 3: + alpha, rounded outward.
   mpfr_add_q(lo.get(), lo.get(), x.alpha.mpq(), MPFR_RNDD);
   mpfr_add_q(hi.get(), hi.get(), x.alpha.mpq(), MPFR_RNDU);
-  return {lo.exact(), hi.exact()};
+}
+
+// The binary64 value nearest to an MPFR number, ties to even. MPFR's mpfr_get_d rounds
+// correctly where the result is a normal binary64 value (|x| in [2^-1000, 2^1000) here);
+// elsewhere (subnormal results, overflow, zero) through the exact rational, which follows
+// binary64's rules (rational.hpp).
+inline double nearest_double(MpfrValue& x) {
+  if (!mpfr_zero_p(x.get())) {
+    const mpfr_exp_t e = mpfr_get_exp(x.get());  // |x| in [2^(e-1), 2^e)
+    if (e > -999 && e < 1000) return mpfr_get_d(x.get(), MPFR_RNDN);
+  }
+  Rational q;
+  mpfr_get_q(q.mpq(), x.get());
+  return round_to_nearest<double>(q);
 }
 
 // The binary64 value nearest to x, ties to even (see the header comment for the proof).
 inline double nearest_double(const QuadraticNumber& x) {
   if (x.is_rational()) return round_to_nearest<double>(x.alpha);
   for (mpfr_prec_t bits = 96; bits <= (mpfr_prec_t{1} << 22); bits *= 2) {
-    const auto [lo, hi] = enclose(x, bits);
-    const double dlo = round_to_nearest<double>(lo), dhi = round_to_nearest<double>(hi);
+    MpfrValue lo(bits), hi(bits);
+    enclose(x, lo, hi);
+    const double dlo = nearest_double(lo), dhi = nearest_double(hi);
     if (dlo == dhi) return dlo;
   }
   // Unreachable for the normal form: an irrational is at a positive distance from every

@@ -1,24 +1,50 @@
 // certcyl/certified/detail/triangle_slab.hpp -- the sign tests behind the certified
-// triangle-cylinder predicate, generic over a certified number type (Interval_nt, Gmpq).
+// triangle-cylinder predicate, generic over the number type and over the way a sign is decided
+// (a sign policy): exact or interval signs (nt::sign), or the semi-static double filter of
+// triangle_static_filter.hpp, which needs to know which polynomial it is looking at.
 //
-// Notation (design note, section 3): P = p0, A = p1 - p0, R = r^2 A.A, and for a point X
-//   s(X) = (X-P).A             axial coordinate, times A.A             (degree 2)
-//   q(X) = |(X-P) x A|^2       squared distance to the axis, times A.A (degree 4)
+// Notation (design note, section 3): P = p0, A = p1 - p0, a_i = v_i - P, r the radius, and
+//   s_i = a_i.A                axial coordinate of v_i, times A.A               (degree 2)
+//   q(X) = |(X-P) x A|^2       squared distance to the axis, times A.A          (degree 4)
+//   R = r^2 A.A
 // The closed cylinder is {0 <= s <= A.A, q <= R}; its interior uses strict inequalities.
+// Everything below is division-free: a point is homogeneous, X/w + P with w > 0.
 //
-// Outline (each step a sign test; the clip points are rational functions of the input):
+// Outline (each step a sign test):
 //   1. T entirely beyond a cap plane (all s_i < 0, or all s_i > A.A): separated.
-//   2. S = T clipped to the closed slab 0 <= s <= A.A (Sutherland-Hodgman, at most 5 vertices,
-//      every clip point tagged with its exact axial coordinate 0 or A.A).
+//      Shortcut: a vertex strictly inside the cylinder: overlapping.
+//   2. S = T clipped to the closed slab 0 <= s <= A.A: T's boundary walked once, keeping the
+//      vertices in the slab and the strict crossings of each edge with the cap planes (at most
+//      5 points). A crossing of edge v_i v_j with the plane where the affine function h
+//      (h = s, or h = A.A - s) vanishes, with h_+ > 0 > h_- at the two ends a_+, a_-, is
+//        X = h_+ a_- - h_- a_+,  w = h_+ - h_- > 0                 (degrees 3 and 2).
 //   3. m = min over S of q. Either the axis line pierces S (m = 0) or m is attained on an edge
-//      of S: q is convex, and where its minimum over the plane of S is not unique (axis
-//      parallel to that plane) the minimising line meets S only if it meets S's boundary.
+//      of S (q is convex; where its minimum over the plane of S is not unique, the minimising
+//      line meets S only if it meets S's boundary). For an edge a b of S, with
+//        D = X_b w_a - X_a w_b (direction),  U_a = X_a x A,  U_b = X_b x A,  V = D x A,
+//      q(a + t (b - a)) is a convex quadratic in t whose slope at a has the sign of U_a.V and
+//      at b the sign of U_b.V. If U_a.V >= 0 the minimum is at a; else (then V != 0) if
+//      U_b.V <= 0 it is at b; else it is inside, with V != 0. There, with u = U_a / w_a and
+//      v = V / (w_a w_b), q_min = u.u - (u.v)^2 / v.v, and Lagrange's identities
+//      u.u v.v - (u.v)^2 = |u x v|^2 and (X_a x A) x (D x A) = det(X_a, D, A) A = w_a det(X_a, X_b, A) A
+//      give (q_min - R) v.v = A.A (det(X_a, X_b, A)^2 - r^2 V.V) / (w_a w_b)^2, so the sign of
+//      q_min - R is the sign of
+//        gap = det(X_a, X_b, A)^2 - r^2 V.V
+//      (the squared distance between the edge's line and the axis line, against r^2). The
+//      endpoint tests are q - R = (U.U - R w^2) / w^2.
+//      "The axis pierces S" is the sign test of det(X_a, X_b, A) over S's edges: one sign,
+//      not all zero.
 //   4. If T meets the open slab, the closure of T ∩ open slab is S, so
 //        m < R  overlapping,   m = R  touching,   m > R  separated.
 //      Otherwise T touches the slab only in a cap plane, where no point is interior:
 //        m <= R touching,      m > R  separated.
+//
+// Degrees (vertex: X degree 1, w degree 0; crossing: X degree 3, w degree 2), by edge kind
+// vertex-vertex / vertex-crossing / crossing-crossing:
+//   det 3 / 5 / 7,   U.V 4 / 6 or 8 / 10,   gap 6 / 10 / 14,   point q - R 4 (vertex), 8.
 #pragma once
 
+#include <CGAL/Uncertain.h>
 #include <CGAL/enum.h>
 
 #include <array>
@@ -30,141 +56,123 @@
 
 namespace certcyl::detail {
 
-// A vertex of the clipped polygon and its axial coordinate s, exact for clip points (0 or A.A).
+// A vertex of the clipped polygon: the input vertex (X = a_i, w = 1) or a crossing with a cap
+// plane (X, w from the formula above). The kind selects the static filter's error bound.
+enum class SlabKind : int { vertex = 0, crossing = 1 };
+
 template <class NT>
 struct SlabPoint {
-  Point3<NT> x;
-  NT s;
+  Vec3<NT> X;  // the point is P + X / w
+  NT w;        // w > 0
+  SlabKind kind = SlabKind::vertex;
 };
 
 // A convex polygon (possibly degenerate: repeated or collinear vertices) in boundary order.
-// Clipping a triangle by two parallel planes leaves at most 5 vertices.
 template <class NT>
 struct SlabPolygon {
   std::array<SlabPoint<NT>, 5> p;
   int n = 0;
 
-  void push(const Point3<NT>& x, const NT& s) { p[n++] = {x, s}; }
+  void push(const SlabPoint<NT>& x) { p[n++] = x; }
 };
 
-// Keeps the part of `in` on the side `side(s) >= 0`, where side(s) is s (lower cap plane) or
-// A.A - s (upper cap plane). A clip point is made only where the two ends lie strictly on
-// opposite sides, so a vertex on the plane is kept once and never duplicated.
-template <class NT, class Side>
-SlabPolygon<NT> clip_by_plane(const SlabPolygon<NT>& in, Side side, const NT& plane_s) {
-  SlabPolygon<NT> out;
-  std::array<CGAL::Sign, 5> sg{};
-  for (int i = 0; i < in.n; ++i) sg[i] = nt::sign(side(in.p[i].s));
-  for (int i = 0; i < in.n; ++i) {
-    const int j = (i + 1) % in.n;
-    const SlabPoint<NT>& a = in.p[i];
-    const SlabPoint<NT>& b = in.p[j];
-    if (sg[i] != CGAL::NEGATIVE) out.push(a.x, a.s);
-    if (sg[i] * sg[j] == CGAL::NEGATIVE) {
-      // t = side(a) / (side(a) - side(b)) in (0, 1); side is affine in s.
-      const NT sa = side(a.s);
-      const NT t = sa / (sa - side(b.s));
-      out.push(a.x + t * (b.x - a.x), plane_s);
-    }
-  }
-  return out;
+// The polynomials whose signs decide the answer. Each is one fixed expression tree (the
+// functions below), so the static filter's error bound for it is derived from that tree.
+enum class SlabTest : int {
+  axial,       // s_i                        degree 2
+  axial_top,   // A.A - s_i                  degree 2
+  point,       // U.U - R w^2                degree 4 (vertex) or 8 (crossing)
+  pierce,      // det(X_a, X_b, A)           3 / 5 / 7
+  slope,       // U_a.V (or U_b.V)           by the kinds of the edge and of the point
+  gap,         // det^2 - r^2 V.V            6 / 10 / 14
+  count
+};
+
+// ---- the expression trees -----------------------------------------------------------------
+
+template <class NT>
+NT slab_axial(const Vec3<NT>& a, const Vec3<NT>& A) {
+  return dot(a, A);
 }
 
-// T ∩ closed slab, vertices in T's boundary order.
 template <class NT>
-SlabPolygon<NT> clip_to_slab(const Triangle<NT>& T, const std::array<NT, 3>& s, const NT& AA) {
-  SlabPolygon<NT> tri;
-  for (int i = 0; i < 3; ++i) tri.push(T.v[i], s[i]);
-  const NT zero = nt::constant<NT>(0);
-  SlabPolygon<NT> lower = clip_by_plane(tri, [](const NT& x) { return x; }, zero);
-  return clip_by_plane(lower, [&AA](const NT& x) { return NT(AA - x); }, AA);
+NT slab_axial_top(const NT& AA, const NT& s) {
+  return AA - s;
 }
 
-// Does the axis line meet S? Its projection along A contains the projection of P,
-// non-degenerately: the triple products det(a-P, b-P, A) over S's edges have one sign, not
-// all zero (for a polygon whose projection is a segment, or a point, they are either of both
-// signs or all zero, and the edges then decide). Degree 5 per edge.
 template <class NT>
-bool axis_pierces(const SlabPolygon<NT>& S, const Point3<NT>& P, const Vec3<NT>& A) {
-  if (S.n < 3) return false;
-  bool has_positive = false, has_negative = false;
-  for (int i = 0; i < S.n; ++i) {
-    const Point3<NT>& a = S.p[i].x;
-    const Point3<NT>& b = S.p[(i + 1) % S.n].x;
-    const CGAL::Sign sg = nt::sign(determinant(Vec3<NT>(a - P), Vec3<NT>(b - P), A));
-    has_positive |= sg == CGAL::POSITIVE;
-    has_negative |= sg == CGAL::NEGATIVE;
-    if (has_positive && has_negative) return false;
-  }
-  return has_positive != has_negative;
+NT slab_radius_term(const NT& r, const NT& AA) {
+  return (r * r) * AA;
 }
 
-// The quadratic q(a + t (b - a)) = uu + 2 uv t + vv t^2 of an edge, t in [0, 1].
+// The crossing of the segment a_+ a_- with the plane h = 0, from h_+ > 0 > h_-.
 template <class NT>
-struct EdgeQuadratic {
-  NT uu, uv, vv;
+SlabPoint<NT> slab_crossing(const Vec3<NT>& a_pos, const NT& h_pos, const Vec3<NT>& a_neg, const NT& h_neg) {
+  return {Vec3<NT>(a_neg * h_pos - a_pos * h_neg), NT(h_pos - h_neg), SlabKind::crossing};
+}
 
-  EdgeQuadratic(const Point3<NT>& a, const Point3<NT>& b, const Point3<NT>& P, const Vec3<NT>& A) {
-    const Vec3<NT> u = cross(Vec3<NT>(a - P), A);
-    const Vec3<NT> v = cross(Vec3<NT>(b - a), A);
-    uu = dot(u, u);
-    uv = dot(u, v);
-    vv = dot(v, v);
+// q - R at a point, times w^2.
+template <class NT>
+NT slab_point_minus_R(const SlabPoint<NT>& x, const Vec3<NT>& A, const NT& R) {
+  const Vec3<NT> U = cross(x.X, A);
+  return dot(U, U) - R * (x.w * x.w);
+}
+
+template <class NT>
+NT slab_det(const SlabPoint<NT>& a, const SlabPoint<NT>& b, const Vec3<NT>& A) {
+  return dot(a.X, cross(b.X, A));
+}
+
+// V = D x A for the edge a b.
+template <class NT>
+Vec3<NT> slab_edge_V(const SlabPoint<NT>& a, const SlabPoint<NT>& b, const Vec3<NT>& A) {
+  return cross(Vec3<NT>(b.X * a.w - a.X * b.w), A);
+}
+
+template <class NT>
+NT slab_slope(const SlabPoint<NT>& x, const Vec3<NT>& V, const Vec3<NT>& A) {
+  return dot(cross(x.X, A), V);
+}
+
+template <class NT>
+NT slab_gap(const NT& det, const Vec3<NT>& V, const NT& r) {
+  return det * det - (r * r) * dot(V, V);
+}
+
+// ---- sign policies --------------------------------------------------------------------------
+
+// Exact types and intervals: the number type decides (an undecided interval sign throws
+// CGAL::Uncertain_conversion_exception).
+struct ExactSigns {
+  template <class NT>
+  CGAL::Sign operator()(const NT& v, SlabTest, SlabKind = SlabKind::vertex, SlabKind = SlabKind::vertex,
+                        SlabKind = SlabKind::vertex) const {
+    return nt::sign(v);
   }
 };
 
-// Where the minimum of q over an edge lies.
-enum class EdgeMinimum { at_a, at_b, inside };
+// ---- the algorithm --------------------------------------------------------------------------
 
+// The input of the decision, relative to P: a_i = v_i - P, the axis A, the radius r, and the
+// number one (the weight of an input vertex).
 template <class NT>
-EdgeMinimum locate_edge_minimum(const EdgeQuadratic<NT>& e) {
-  // vv = 0: q is constant along the edge (edge parallel to the axis, or a repeated vertex).
-  if (nt::sign(e.vv) == CGAL::ZERO || nt::sign(e.uv) != CGAL::NEGATIVE) return EdgeMinimum::at_a;
-  if (nt::sign(NT(e.uv + e.vv)) != CGAL::POSITIVE) return EdgeMinimum::at_b;
-  return EdgeMinimum::inside;
-}
-
-// sign(min over the edge of q  -  R). Degree 8 in the input for an interior minimum
-// ((uu - R) vv - uv^2), times the powers of the clip denominators.
-template <class NT>
-CGAL::Sign edge_minimum_minus(const EdgeQuadratic<NT>& e, const NT& R) {
-  switch (locate_edge_minimum(e)) {
-    case EdgeMinimum::at_a: return nt::sign(NT(e.uu - R));
-    case EdgeMinimum::at_b: return nt::sign(NT(e.uu + (e.uv + e.uv) + e.vv - R));
-    case EdgeMinimum::inside: break;
-  }
-  // else: t* = -uv/vv in (0, 1), q* = uu - uv^2/vv, and vv > 0.
-  return nt::sign(NT((e.uu - R) * e.vv - e.uv * e.uv));
-}
-
-// sign(min over S of q  -  R), S not empty.
-template <class NT>
-CGAL::Sign polygon_minimum_minus(const SlabPolygon<NT>& S, const Point3<NT>& P, const Vec3<NT>& A, const NT& R) {
-  if (S.n == 1) return nt::sign(NT(squared_length(cross(Vec3<NT>(S.p[0].x - P), A)) - R));
-  CGAL::Sign best = CGAL::POSITIVE;
-  // A 2-gon is one segment: its second edge is the first reversed.
-  const int edges = S.n == 2 ? 1 : S.n;
-  for (int i = 0; i < edges; ++i) {
-    const CGAL::Sign sg = edge_minimum_minus(EdgeQuadratic<NT>(S.p[i].x, S.p[(i + 1) % S.n].x, P, A), R);
-    if (sg == CGAL::NEGATIVE) return sg;
-    if (sg == CGAL::ZERO) best = CGAL::ZERO;
-  }
-  return best;
-}
+struct SlabInput {
+  std::array<Vec3<NT>, 3> a;
+  Vec3<NT> A;
+  NT r;
+  NT one;
+};
 
 // Where T lies along the axis.
 enum class SlabContact { beyond_cap0, beyond_cap1, cap0_plane_only, cap1_plane_only, crosses_open_slab };
 
-template <class NT>
-SlabContact locate_in_slab(const std::array<NT, 3>& s, const NT& AA) {
+inline SlabContact locate_in_slab(const std::array<CGAL::Sign, 3>& lo, const std::array<CGAL::Sign, 3>& hi) {
   int below = 0, above = 0, reaches_up = 0, reaches_down = 0;
-  for (const NT& si : s) {
-    const CGAL::Sign lo = nt::sign(si);
-    const CGAL::Sign hi = nt::sign(NT(AA - si));
-    below += lo == CGAL::NEGATIVE;
-    above += hi == CGAL::NEGATIVE;
-    reaches_up += lo == CGAL::POSITIVE;
-    reaches_down += hi == CGAL::POSITIVE;
+  for (int i = 0; i < 3; ++i) {
+    below += lo[i] == CGAL::NEGATIVE;
+    above += hi[i] == CGAL::NEGATIVE;
+    reaches_up += lo[i] == CGAL::POSITIVE;
+    reaches_down += hi[i] == CGAL::POSITIVE;
   }
   if (below == 3) return SlabContact::beyond_cap0;
   if (above == 3) return SlabContact::beyond_cap1;
@@ -174,37 +182,167 @@ SlabContact locate_in_slab(const std::array<NT, 3>& s, const NT& AA) {
   return SlabContact::crosses_open_slab;
 }
 
-// The three-valued answer, by sign tests only (outline at the top of this file). For
-// Interval_nt an undecided sign throws CGAL::Uncertain_conversion_exception.
+// T ∩ closed slab (step 2). lo_i = sign(s_i), hi_i = sign(A.A - s_i).
 template <class NT>
-Answer decide_triangle_cylinder(const Triangle<NT>& T, const Cylinder<NT>& C) {
-  const Point3<NT>& P = C.p0;
-  const Vec3<NT> A = C.axis();
-  const NT AA = squared_length(A);
-  const NT R = C.radius * C.radius * AA;
-  const std::array<NT, 3> s{dot(Vec3<NT>(T.v[0] - P), A), dot(Vec3<NT>(T.v[1] - P), A),
-                            dot(Vec3<NT>(T.v[2] - P), A)};
+SlabPolygon<NT> clip_to_slab(const SlabInput<NT>& in, const std::array<NT, 3>& s, const std::array<NT, 3>& top,
+                             const std::array<CGAL::Sign, 3>& lo, const std::array<CGAL::Sign, 3>& hi) {
+  SlabPolygon<NT> S;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    if (lo[i] != CGAL::NEGATIVE && hi[i] != CGAL::NEGATIVE) S.push({in.a[i], in.one, SlabKind::vertex});
+    const bool cross0 = lo[i] * lo[j] == CGAL::NEGATIVE;
+    const bool cross1 = hi[i] * hi[j] == CGAL::NEGATIVE;
+    const auto crossing0 = [&] {
+      return lo[i] == CGAL::POSITIVE ? slab_crossing(in.a[i], s[i], in.a[j], s[j]) : slab_crossing(in.a[j], s[j], in.a[i], s[i]);
+    };
+    const auto crossing1 = [&] {
+      return hi[i] == CGAL::POSITIVE ? slab_crossing(in.a[i], top[i], in.a[j], top[j])
+                                     : slab_crossing(in.a[j], top[j], in.a[i], top[i]);
+    };
+    // Along the edge from v_i, the plane on v_i's side comes first.
+    if (lo[i] == CGAL::NEGATIVE) {
+      if (cross0) S.push(crossing0());
+      if (cross1) S.push(crossing1());
+    } else {
+      if (cross1) S.push(crossing1());
+      if (cross0) S.push(crossing0());
+    }
+  }
+  return S;
+}
 
+// Does the axis line meet S? Its projection along A contains the projection of P,
+// non-degenerately: det(X_a, X_b, A) over S's edges has one sign, not all zero (for a polygon
+// whose projection is a segment, or a point, they are either of both signs or all zero, and
+// the edges then decide).
+template <class NT, class Signs>
+bool axis_pierces(const SlabPolygon<NT>& S, const Vec3<NT>& A, const Signs& sign) {
+  if (S.n < 3) return false;
+  bool has_positive = false, has_negative = false;
+  for (int i = 0; i < S.n; ++i) {
+    const SlabPoint<NT>& a = S.p[i];
+    const SlabPoint<NT>& b = S.p[(i + 1) % S.n];
+    const CGAL::Sign sg = sign(slab_det(a, b, A), SlabTest::pierce, a.kind, b.kind);
+    has_positive |= sg == CGAL::POSITIVE;
+    has_negative |= sg == CGAL::NEGATIVE;
+    if (has_positive && has_negative) return false;
+  }
+  return has_positive != has_negative;
+}
+
+// Where the minimum of q over an edge lies.
+enum class EdgeMinimum { at_a, at_b, inside };
+
+template <class NT, class Signs>
+EdgeMinimum locate_edge_minimum(const SlabPoint<NT>& a, const SlabPoint<NT>& b, const Vec3<NT>& V, const Vec3<NT>& A,
+                                const Signs& sign) {
+  // Slope at a >= 0 (this includes V = 0: q constant along the edge).
+  if (sign(slab_slope(a, V, A), SlabTest::slope, a.kind, b.kind, a.kind) != CGAL::NEGATIVE) return EdgeMinimum::at_a;
+  if (sign(slab_slope(b, V, A), SlabTest::slope, a.kind, b.kind, b.kind) != CGAL::POSITIVE) return EdgeMinimum::at_b;
+  return EdgeMinimum::inside;
+}
+
+// sign(min over the edge a b of q  -  R).
+template <class NT, class Signs>
+CGAL::Sign edge_minimum_minus(const SlabPoint<NT>& a, const SlabPoint<NT>& b, const SlabInput<NT>& in, const NT& R,
+                              const Signs& sign) {
+  const Vec3<NT> V = slab_edge_V(a, b, in.A);
+  switch (locate_edge_minimum(a, b, V, in.A, sign)) {
+    case EdgeMinimum::at_a: return sign(slab_point_minus_R(a, in.A, R), SlabTest::point, a.kind);
+    case EdgeMinimum::at_b: return sign(slab_point_minus_R(b, in.A, R), SlabTest::point, b.kind);
+    case EdgeMinimum::inside: break;
+  }
+  return sign(slab_gap(slab_det(a, b, in.A), V, in.r), SlabTest::gap, a.kind, b.kind);
+}
+
+// sign(min over S of q  -  R), S not empty.
+template <class NT, class Signs>
+CGAL::Sign polygon_minimum_minus(const SlabPolygon<NT>& S, const SlabInput<NT>& in, const NT& R, const Signs& sign) {
+  if (S.n == 1) return sign(slab_point_minus_R(S.p[0], in.A, R), SlabTest::point, S.p[0].kind);
+  CGAL::Sign best = CGAL::POSITIVE;
+  // A 2-gon is one segment: its second edge is the first reversed.
+  const int edges = S.n == 2 ? 1 : S.n;
+  for (int i = 0; i < edges; ++i) {
+    const CGAL::Sign sg = edge_minimum_minus(S.p[i], S.p[(i + 1) % S.n], in, R, sign);
+    if (sg == CGAL::NEGATIVE) return sg;
+    if (sg == CGAL::ZERO) best = CGAL::ZERO;
+  }
+  return best;
+}
+
+// The axial data of T: s_i, A.A - s_i and their signs.
+template <class NT>
+struct SlabAxial {
+  NT AA;
+  std::array<NT, 3> s, top;
+  std::array<CGAL::Sign, 3> lo, hi;
+};
+
+template <class NT, class Signs>
+SlabAxial<NT> slab_axial_data(const SlabInput<NT>& in, const Signs& sign) {
+  SlabAxial<NT> ax;
+  ax.AA = dot(in.A, in.A);
+  for (int i = 0; i < 3; ++i) {
+    ax.s[i] = slab_axial(in.a[i], in.A);
+    ax.top[i] = slab_axial_top(ax.AA, ax.s[i]);
+    ax.lo[i] = sign(ax.s[i], SlabTest::axial);
+    ax.hi[i] = sign(ax.top[i], SlabTest::axial_top);
+  }
+  return ax;
+}
+
+// The answer and the facts that decided it (each one certified by the sign policy).
+struct SlabDecision {
+  Answer answer = Answer::undecided;
+  SlabContact where = SlabContact::crosses_open_slab;
+  int inside_vertex = -1;  // a vertex strictly inside the cylinder, if the shortcut found one
+};
+
+// The three-valued answer, by sign tests only (outline at the top of this file).
+template <class NT, class Signs>
+SlabDecision decide_slab(const SlabInput<NT>& in, const Signs& sign) {
   // Step 1: beyond a cap plane.
-  const SlabContact where = locate_in_slab(s, AA);
-  if (where == SlabContact::beyond_cap0 || where == SlabContact::beyond_cap1) return Answer::separated;
+  const SlabAxial<NT> ax = slab_axial_data(in, sign);
+  const SlabContact where = locate_in_slab(ax.lo, ax.hi);
+  if (where == SlabContact::beyond_cap0 || where == SlabContact::beyond_cap1) return {Answer::separated, where};
 
   // Shortcut: a vertex strictly inside the cylinder (a common case, and cheap).
+  const NT R = slab_radius_term(in.r, ax.AA);
   for (int i = 0; i < 3; ++i) {
-    if (nt::sign(s[i]) == CGAL::POSITIVE && nt::sign(NT(AA - s[i])) == CGAL::POSITIVE &&
-        nt::sign(NT(R - squared_length(cross(Vec3<NT>(T.v[i] - P), A)))) == CGAL::POSITIVE)
-      return Answer::overlapping;
+    if (ax.lo[i] == CGAL::POSITIVE && ax.hi[i] == CGAL::POSITIVE &&
+        sign(slab_point_minus_R(SlabPoint<NT>{in.a[i], in.one, SlabKind::vertex}, in.A, R), SlabTest::point,
+             SlabKind::vertex) == CGAL::NEGATIVE)
+      return {Answer::overlapping, where, i};
   }
 
   // Steps 2 and 3: clip, then the minimum of q against R.
-  const SlabPolygon<NT> S = clip_to_slab(T, s, AA);
-  const CGAL::Sign m = axis_pierces(S, P, A) ? CGAL::NEGATIVE : polygon_minimum_minus(S, P, A, R);
+  const SlabPolygon<NT> S = clip_to_slab(in, ax.s, ax.top, ax.lo, ax.hi);
+  const CGAL::Sign m = axis_pierces(S, in.A, sign) ? CGAL::NEGATIVE : polygon_minimum_minus(S, in, R, sign);
 
   // Step 4.
   if (where == SlabContact::crosses_open_slab)
-    return m == CGAL::NEGATIVE ? Answer::overlapping : (m == CGAL::ZERO ? Answer::touching : Answer::separated);
+    return {m == CGAL::NEGATIVE ? Answer::overlapping : (m == CGAL::ZERO ? Answer::touching : Answer::separated), where};
   // else: T meets the slab only in a cap plane, where no point is interior.
-  return m == CGAL::POSITIVE ? Answer::separated : Answer::touching;
+  return {m == CGAL::POSITIVE ? Answer::separated : Answer::touching, where};
+}
+
+template <class NT, class Signs>
+Answer decide_triangle_cylinder(const SlabInput<NT>& in, const Signs& sign) {
+  return decide_slab(in, sign).answer;
+}
+
+// The input relative to P, in a certified number type (exact, or enclosing for intervals).
+template <class NT>
+SlabInput<NT> slab_input(const Triangle<NT>& T, const Cylinder<NT>& C) {
+  return {{Vec3<NT>(T.v[0] - C.p0), Vec3<NT>(T.v[1] - C.p0), Vec3<NT>(T.v[2] - C.p0)},
+          C.axis(),
+          C.radius,
+          nt::constant<NT>(1)};
+}
+
+template <class NT>
+Answer decide_triangle_cylinder(const Triangle<NT>& T, const Cylinder<NT>& C) {
+  return decide_triangle_cylinder(slab_input(T, C), ExactSigns{});
 }
 
 }  // namespace certcyl::detail

@@ -1,0 +1,249 @@
+// certcyl/certified/detail/cylinder_rim_contacts.hpp -- the exact contact normals of rim-wall and
+// rim-rim contacts between two cylinders with rational data.
+//
+// Notation of detail/cylinder_certificates.hpp: cylinder i has axis A_i, radius r_i, ends p0_i,
+// p1_i; T = 2 Delta; phi2(D) = |D.A0| + |D.A1| + sqrt(p_0(D)) + sqrt(p_1(D)) with
+// p_i(D) = 4 r_i^2 |D x A_i|^2 / A_i.A_i; touching with normal D means phi2(D) = D.T > 0 plus a
+// common point (detail/cylinder_touching.hpp proves both exactly for a rational D).
+//
+// Theorem. If two cylinders with rational data touch, they touch with a rational normal and at
+// a rational point. Cap contacts have the normal A_i and wall-wall contacts A0 x A1 or the part
+// of T orthogonal to the (parallel) axes; what is left to prove is the rim contacts.
+//
+//   Rim-rim. The common point X lies on both rim circles, so on the line L where the two cap
+//   planes meet (distinct planes: equal planes make a cap-cap contact, normal A0). L is rational
+//   and X = X0 + s L with s a root of a rational quadratic (|X - e0|^2 = r0^2, e0 the centre of
+//   rim 0). If s were irrational, its conjugate s' would give a point X' that satisfies the same
+//   rational equations, so X' lies on both circles too; then the contact set, which is convex
+//   (it is the intersection of the two solids with the supporting plane), holds the chord XX'
+//   of rim 0, and the support set of cylinder 0 in the contact normal would be the whole cap
+//   disk: a cap contact in both equal cap planes, not a rim-rim one. So s, X are rational, and
+//   so is the normal, which lies in both planes span(A_i, X - e_i):
+//     D = (A0 x (X - e0)) x (A1 x (X - e1))
+//   (when the two planes coincide every common normal lies between the rays s0 A0, X - e0,
+//   -s1 A1, -(X - e1) of that plane, and the boundary rays X - e0 and -(X - e1) are candidates).
+//
+//   Rim-wall (rim of cylinder i at X, wall of cylinder j). Let Q(X) = |(X - p0_j) x A_j|^2 /
+//   A_j.A_j - r_j^2 (zero on the infinite tube of j). X is a double zero of Q on rim circle i
+//   (the circle touches the tube). The conditions "X on circle i, X on the tube, tangent there"
+//   are rational polynomial equations, so if X is irrational its conjugate X' (X lies in a
+//   number field; take an automorphism that moves it) is another point of circle i where Q has
+//   a double zero. Q restricted to the circle (a conic) has 4 zeros with multiplicity, so its
+//   divisor is 2X + 2X', which is also the divisor of l^2 for the chord line l through X and X'
+//   (rational, since it is invariant under conjugation); on a conic a function without zeros
+//   and poles is constant, so Q = lambda l^2 on the circle with a real constant lambda != 0.
+//     lambda > 0: Q >= 0 on the circle and the chord XX' lies in the tube (Q is convex along a
+//       segment and zero at both ends), strictly inside it near X unless the chord is parallel
+//       to A_j (then the cap disk of i rests on the tube along it: a cap-wall contact with the
+//       normal A_i). A chord point near X is in the relative interior of cap disk i and, X being
+//       in the open slab of j, in the interior of j: the solids overlap.
+//     lambda < 0: Q <= 0 on the circle, so on the whole cap disk (convexity), and the disk
+//       points near X are interior to j again: overlapping.
+//   (X on the boundary of j's slab is on rim j: a rim-rim contact, above.) So X is rational.
+//   The normal D is orthogonal to A_j and lies in the plane span(A_i, X - e_i): rational.
+//
+// So no algebraic numbers are needed: the design note's "roots of univariate polynomials of
+// degree up to 4 and 8" are, for rational input, always rational roots, and an irrational
+// root proves that no contact of that type exists. This file finds the rational candidates
+// exactly; the caller proves or rejects each one (prove_touching).
+//
+// Rim-wall candidates, without a frame of the cap plane: a rim-wall normal D (wall of j) lies
+// on the line { D : D.A_j = 0, D.T = 1 } = { P + t W }, W = A_j x T, and there
+//   g(t) = phi2(P + t W) = sigma l(t) + sqrt(p_i(t)) + sqrt(p_j(t)),   l(t) = (P + t W).A_i,
+// with sigma = sign(D.A_i) = +-1 (which rim of i) and p_i, p_j quadratics in t. At the contact
+// g has a minimum equal to 1 and is smooth there (D x A_i != 0 for a rim, D x A_j != 0 for a
+// wall), so t* is a double root of 1 - g, hence of the rational quartic
+//   F_sigma(t) = ((1 - sigma l)^2 - p_i - p_j)^2 - 4 p_i p_j
+//              = product over the four sign choices of (1 - sigma l +- sqrt(p_i) +- sqrt(p_j)).
+// F_sigma is never the zero polynomial (that would need p_j(t) = 4 r_j^2 |P + t W|^2 to be a
+// square of a linear polynomial, impossible since P.T = 1 and W.T = 0 make P, W independent).
+// Its double roots are the roots of S = squarefree(gcd(F, F')), of degree at most 2; only
+// rational roots can be contacts (theorem), and they give the candidates P + t* W. Degree:
+// the coefficients of F are of degree 8 in P, W and 4 in the squared radii over A.A; all in Gmpq.
+#pragma once
+
+#include <CGAL/Gmpq.h>
+#include <CGAL/Gmpz.h>
+#include <gmp.h>
+
+#include <algorithm>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "certcyl/certified/detail/cylinder_certificates.hpp"
+
+namespace certcyl::detail {
+
+// The square root of q when q is the square of a rational.
+inline std::optional<Rational> rational_sqrt(const Rational& q) {
+  if (q < 0) return std::nullopt;
+  mpz_srcptr n = mpq_numref(q.mpq());
+  mpz_srcptr d = mpq_denref(q.mpq());
+  if (!mpz_perfect_square_p(n) || !mpz_perfect_square_p(d)) return std::nullopt;
+  CGAL::Gmpz rn, rd;
+  mpz_sqrt(rn.mpz(), n);
+  mpz_sqrt(rd.mpz(), d);
+  return Rational(rn, rd);
+}
+
+// ---- univariate polynomials over Q: coefficients from degree 0 up, no trailing zero ------------
+using RationalPolynomial = std::vector<Rational>;
+
+inline RationalPolynomial trimmed(RationalPolynomial f) {
+  while (!f.empty() && f.back() == 0) f.pop_back();
+  return f;
+}
+
+inline RationalPolynomial operator+(const RationalPolynomial& f, const RationalPolynomial& g) {
+  RationalPolynomial h(std::max(f.size(), g.size()), Rational(0));
+  for (std::size_t i = 0; i < f.size(); ++i) h[i] += f[i];
+  for (std::size_t i = 0; i < g.size(); ++i) h[i] += g[i];
+  return trimmed(std::move(h));
+}
+
+inline RationalPolynomial operator*(const Rational& c, const RationalPolynomial& f) {
+  RationalPolynomial h(f);
+  for (Rational& x : h) x *= c;
+  return trimmed(std::move(h));
+}
+
+inline RationalPolynomial operator-(const RationalPolynomial& f, const RationalPolynomial& g) { return f + Rational(-1) * g; }
+
+inline RationalPolynomial operator*(const RationalPolynomial& f, const RationalPolynomial& g) {
+  if (f.empty() || g.empty()) return {};
+  RationalPolynomial h(f.size() + g.size() - 1, Rational(0));
+  for (std::size_t i = 0; i < f.size(); ++i)
+    for (std::size_t j = 0; j < g.size(); ++j) h[i + j] += f[i] * g[j];
+  return trimmed(std::move(h));
+}
+
+inline RationalPolynomial derivative(const RationalPolynomial& f) {
+  RationalPolynomial h;
+  for (std::size_t i = 1; i < f.size(); ++i) h.push_back(Rational(static_cast<long>(i)) * f[i]);
+  return trimmed(std::move(h));
+}
+
+// Quotient and remainder of f by g != 0.
+inline std::pair<RationalPolynomial, RationalPolynomial> divide(RationalPolynomial f, const RationalPolynomial& g) {
+  RationalPolynomial q(f.size() >= g.size() ? f.size() - g.size() + 1 : 0, Rational(0));
+  while (f.size() >= g.size() && !f.empty()) {
+    const std::size_t shift = f.size() - g.size();
+    const Rational c = f.back() / g.back();
+    q[shift] = c;
+    for (std::size_t i = 0; i < g.size(); ++i) f[shift + i] -= c * g[i];
+    f.pop_back();  // the leading coefficient cancels exactly
+    f = trimmed(std::move(f));
+  }
+  return {trimmed(std::move(q)), std::move(f)};
+}
+
+// The monic greatest common divisor (Euclid's algorithm, exact); empty when f = g = 0.
+inline RationalPolynomial gcd(RationalPolynomial f, RationalPolynomial g) {
+  while (!g.empty()) {
+    RationalPolynomial r = divide(f, g).second;
+    f = std::move(g);
+    g = std::move(r);
+  }
+  if (f.empty()) return f;
+  return (Rational(1) / f.back()) * f;
+}
+
+// The distinct rational roots of f != 0 when f has degree at most 2; an irrational or complex
+// pair gives none.
+inline std::vector<Rational> rational_roots_up_to_quadratic(const RationalPolynomial& f) {
+  if (f.size() == 2) return {-f[0] / f[1]};
+  if (f.size() != 3) return {};
+  const Rational b = f[1] / (2 * f[2]), c = f[0] / f[2];  // t^2 + 2 b t + c
+  const std::optional<Rational> root = rational_sqrt(b * b - c);
+  if (!root) return {};
+  if (*root == 0) return {-b};
+  return {-b - *root, -b + *root};
+}
+
+// |U + t V|^2 as a polynomial in t.
+inline RationalPolynomial squared_norm_along(const Vec3<Rational>& U, const Vec3<Rational>& V) {
+  return trimmed({dot(U, U), 2 * dot(U, V), dot(V, V)});
+}
+
+// ---- rim-wall candidates (header comment) --------------------------------------------------------
+// Normals of every rim-wall contact of the pair (rim of one cylinder, wall of the other): for
+// each wall cylinder j and each sign sigma, the rational double roots of F_sigma.
+inline void rim_wall_normals(const CylinderPair<Rational>& d, std::vector<Vec3<Rational>>& out) {
+  for (int j = 0; j < 2; ++j) {
+    const Cylinder<Rational>& ci = j == 0 ? d.c1 : d.c0;  // the rim
+    const Cylinder<Rational>& cj = j == 0 ? d.c0 : d.c1;  // the wall
+    const Vec3<Rational>& Ai = j == 0 ? d.A1 : d.A0;
+    const Vec3<Rational>& Aj = j == 0 ? d.A0 : d.A1;
+    const Rational& AAi = j == 0 ? d.AA1 : d.AA0;
+    const Rational& AAj = j == 0 ? d.AA0 : d.AA1;
+    const Vec3<Rational> W = cross(Aj, d.T);
+    if (W.x == 0 && W.y == 0 && W.z == 0) continue;  // A_j parallel to T: no normal with D.A_j = 0 < D.T
+    // P: D.A_j = 0 and D.T = 1 (the part of T orthogonal to A_j, scaled; P.T = |W|^2 / AAj > 0).
+    const Vec3<Rational> Tj = AAj * d.T - dot(d.T, Aj) * Aj;
+    const Vec3<Rational> P = Tj / dot(Tj, d.T);
+    const RationalPolynomial l = trimmed({dot(P, Ai), dot(W, Ai)});
+    const RationalPolynomial pi = (4 * ci.radius * ci.radius / AAi) * squared_norm_along(cross(P, Ai), cross(W, Ai));
+    const RationalPolynomial pj = (4 * cj.radius * cj.radius / AAj) * squared_norm_along(cross(P, Aj), cross(W, Aj));
+    const RationalPolynomial four_pi_pj = Rational(4) * (pi * pj);
+    for (const int sigma : {1, -1}) {
+      const RationalPolynomial m = RationalPolynomial{Rational(1)} - Rational(sigma) * l;  // 1 - sigma l
+      const RationalPolynomial e = m * m - pi - pj;
+      const RationalPolynomial F = e * e - four_pi_pj;
+      if (F.empty()) continue;  // impossible (header comment); kept so that gcd stays defined
+      const RationalPolynomial H = gcd(F, derivative(F));
+      if (H.size() < 2) continue;  // no double root
+      const RationalPolynomial S = divide(H, gcd(H, derivative(H))).first;
+      for (const Rational& t : rational_roots_up_to_quadratic(S)) {
+        // The rim is the end sigma: sign(D.A_i) = sigma, else this root belongs to another factor.
+        const Rational li = dot(P, Ai) + t * dot(W, Ai);
+        if ((sigma > 0 && li > 0) || (sigma < 0 && li < 0)) out.push_back(P + t * W);
+      }
+    }
+  }
+}
+
+// ---- rim-rim candidates (header comment) ----------------------------------------------------------
+inline void rim_rim_normals(const CylinderPair<Rational>& d, std::vector<Vec3<Rational>>& out) {
+  const Vec3<Rational> L = cross(d.A0, d.A1);
+  if (L.x == 0 && L.y == 0 && L.z == 0) return;  // parallel cap planes: rims meet only in a cap-cap contact
+  const Rational LL = dot(L, L), A01 = dot(d.A0, d.A1);
+  const Rational r0r0 = d.c0.radius * d.c0.radius, r1r1 = d.c1.radius * d.c1.radius;
+  for (const Point3<Rational>* e0 : {&d.c0.p0, &d.c0.p1}) {
+    for (const Point3<Rational>* e1 : {&d.c1.p0, &d.c1.p1}) {
+      // X0: the point of the line {A0.X = h0} n {A1.X = h1} in span(A0, A1).
+      const Rational h0 = dot(d.A0, *e0), h1 = dot(d.A1, *e1);
+      const Point3<Rational> X0 = ((h0 * d.AA1 - h1 * A01) / LL) * d.A0 + ((h1 * d.AA0 - h0 * A01) / LL) * d.A1;
+      // |X0 + s L - e0|^2 = r0^2:  LL s^2 + 2 b s + c = 0.
+      const Vec3<Rational> w = X0 - *e0;
+      const Rational b = dot(L, w), c = dot(w, w) - r0r0;
+      const std::optional<Rational> root = rational_sqrt(b * b - LL * c);
+      if (!root) continue;  // no common point, or an irrational one: no rim-rim contact (theorem)
+      for (const Rational& s : {(-b + *root) / LL, (-b - *root) / LL}) {
+        const Point3<Rational> X = X0 + s * L;
+        const Vec3<Rational> u0 = X - *e0, u1 = X - *e1;
+        if (dot(u1, u1) != r1r1) continue;
+        const Vec3<Rational> D = cross(cross(d.A0, u0), cross(d.A1, u1));
+        if (D.x == 0 && D.y == 0 && D.z == 0) {
+          // else-branch of the header: the two normal planes coincide; the boundary rays.
+          out.push_back(u0);
+          out.push_back(-u1);
+        } else {
+          out.push_back(D);
+        }
+        if (*root == 0) break;  // a double root: one point
+      }
+    }
+  }
+}
+
+// Every candidate normal of a rim-wall or rim-rim contact (orientation left to the proof, which
+// turns D so that D.T > 0). If the pair touches by such a contact, its normal is among them.
+inline std::vector<Vec3<Rational>> rim_contact_normals(const CylinderPair<Rational>& d) {
+  std::vector<Vec3<Rational>> out;
+  rim_wall_normals(d, out);
+  rim_rim_normals(d, out);
+  return out;
+}
+
+}  // namespace certcyl::detail

@@ -1,0 +1,337 @@
+// certcyl/certified/detail/line_static_filter.hpp -- the semi-static double stage of the
+// certified line/ray/segment against circular cylinder decision (before Interval_nt and Gmpq).
+//
+// Each sign the skeleton (certified/detail/line_shape.hpp) needs is the sign of a polynomial of
+// low degree in the input, evaluated in binary64 with a forward error bound computed from the
+// input magnitudes (Shewchuk; CGAL's Static_filters): the sign of the computed value v is
+// returned when |v| > bound, otherwise the stage gives up (`undecided()`) and the caller runs
+// the interval stage, then Gmpq. It never decides a sign wrongly, for any finite input.
+//
+// The polynomials (P = p0, A = p1 - p0, w = O - P, w1 = O - p1; a segment S0 S1 has d = S1 - S0,
+// e0 = S1 - p0, e1 = S1 - p1). Circular quadric of line_shape.hpp: a t^2 + 2 b t + c <= 0,
+// a = |d x A|^2, b = (w x A).(d x A), c = |w x A|^2 - r^2 A.A, disc = A.A (r^2 a - e^2),
+// e = A.(w x d); caps t0 = -(w.A)/(d.A), t1 = -(w1.A)/(d.A); centre = -b/a.
+//   sign(a)             a                                             degree (len, dir) (2, 2)
+//   sign(disc)          r^2 a - e^2         (A.A > 0)                                    (4, 2)
+//   sign(c), f(0)       |w x A|^2 - r^2 A.A                                              (4, 0)
+//   sign(d.A)           d.A                                                              (1, 1)
+//   sign(w.A), sign(w1.A)                                                                (2, 0)
+//   sign(b)             (w x A).(d x A)     (centre vs 0: sign(0 - centre) = sign(b))    (3, 1)
+//   f(1), 1 - centre    |e0 x A|^2 - r^2 A.A and (e0 x A).(d x A) = a + b                 (4, 0), (3, 1)
+//   f(t0)               |A x (w x d)|^2 - r^2 (d.A)^2: since w + t0 d = A x (w x d) / (d.A)
+//                       is orthogonal to A, (d.A)^2 f(t0) = A.A (|A x (w x d)|^2 - r^2 (d.A)^2)
+//                                                                                        (4, 2)
+//   t0 - centre         -sign(d.A) sign((d.d)(w.A) - (w.d)(d.A)): a w.A - b d.A equals
+//                       A.A ((d.d)(w.A) - (w.d)(d.A)) by Lagrange and Binet-Cauchy          (2, 2)
+//   the same two with w1 for t1; t0 - 0 = -(w.A)/(d.A); t0 - 1 = -(e0.A)/(d.A); t1 - 1 = -(e1.A)/(d.A).
+// A tube root against a rational rho follows from F = sign f(rho) and G = sign(rho - centre)
+// (a > 0): F < 0 puts rho strictly between the roots; F > 0 puts it beyond the root on G's side;
+// F = 0 makes rho the root on G's side (both roots when G = 0).
+//
+// Error bound (proved here; the constants are derived at compile time from the same code that
+// runs, see ErrorTerm). Let u = 2^-52: in every IEEE rounding mode a rounded operation returns
+// (x op y)(1 + delta), |delta| <= u, plus, for a product in the subnormal range, an absolute
+// eta with |eta| <= 2^-1074 (sums and differences of doubles are exact there).
+//   Leaves: the differences A, w, w1, d (segment), e0, e1 are computed once from the inputs:
+//   x^ = x (1 + delta) (k = 1); r and a line's d are exact (k = 0). A program of + - * then gives
+//   v^ = sum_j t_j prod_{i <= k} (1 + delta_ij) + E, where t_j are the terms of the expanded
+//   program (no cancellation combined) and k is its rounding depth: k(x +- y) = max(kx, ky) + 1,
+//   k(x y) = kx + ky + 1 (induction on the program). So |v^ - v| <= ((1 + u)^k - 1) T + |E|,
+//   T = sum_j |t_j| <= N mlen^i mdir^j, where mlen bounds every length leaf (|A|, |w|, |w1|,
+//   |e0|, |e1| componentwise and r) and mdir every component of d, both for the exact leaves
+//   (m^ / (1 - u) from the computed ones), and N is the program evaluated with every leaf
+//   replaced by 1 and every - by + (ErrorTerm::N). Every polynomial here is homogeneous of
+//   degree (i, j) in (lengths, directions).
+//   E collects the underflow terms: by induction |E| <= F 2^-1074 S 2^(L D), S = mlen^i mdir^j,
+//   D = i + j, F <= (number of products) N < 2^24 N (induction: F(xy) <= N_x F_y + F_x N_y + 1,
+//   F(x +- y) <= F_x + F_y), when both magnitudes lie in [2^-L, 2^L]. With L = 150 and
+//   D <= 6: |E| <= 2^(24 - 1074 + 900) N S = 2^-150 N S.
+//   The bound actually used, B = fl(fl(C * mlen^i) * mdir^j), C = (k + 1) N u, computed
+//   without underflow or overflow in the window, is at least C (1 - u)^(D+1) m^^(i+j), and
+//   (k + 1) u (1 - u)^(2D+1) >= (1 + u)^k - 1 + 2^-150 for k <= 40, D <= 6 (the difference is
+//   u - O(k^2 u^2)). Hence |v^ - v| < B, and |v^| > B implies sign(v^) = sign(v).
+//   Overflow: every intermediate value is at most (1 + u)^k N' 2^(150 D) < 2^1000.
+// Outside the window (a magnitude above 2^150 or below 2^-150) the stage is skipped.
+// Exact zeros (tangencies, lines parallel to the axis or to the caps, ends on a cap plane) are
+// never decided here: |v^| > B > 0 fails for v^ = 0, and those cases go to the next stage.
+#pragma once
+
+#include <CGAL/enum.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "certcyl/certified/detail/line_shape.hpp"
+#include "certcyl/primitives.hpp"
+
+namespace certcyl::detail {
+
+// ---- Compile-time error bookkeeping --------------------------------------------------------
+
+// The magnitude coefficient N, rounding depth k and bi-degree (length, direction) of a
+// polynomial program, propagated by the same code that evaluates it in double.
+struct ErrorTerm {
+  double N = 0;
+  int k = 0;
+  int deg_len = 0, deg_dir = 0;
+
+  static constexpr ErrorTerm same_degree(const ErrorTerm& x, const ErrorTerm& y) {
+    // A sum of terms of different degrees has no bound of the form N mlen^i mdir^j: refuse to
+    // compile (a constexpr evaluation cannot throw).
+    if (x.deg_len != y.deg_len || x.deg_dir != y.deg_dir) throw "line_static_filter: inhomogeneous sum";
+    return {x.N + y.N, std::max(x.k, y.k) + 1, x.deg_len, x.deg_dir};
+  }
+  friend constexpr ErrorTerm operator+(const ErrorTerm& x, const ErrorTerm& y) { return same_degree(x, y); }
+  friend constexpr ErrorTerm operator-(const ErrorTerm& x, const ErrorTerm& y) { return same_degree(x, y); }
+  friend constexpr ErrorTerm operator*(const ErrorTerm& x, const ErrorTerm& y) {
+    return {x.N * y.N, x.k + y.k + 1, x.deg_len + y.deg_len, x.deg_dir + y.deg_dir};
+  }
+};
+
+// The bound's constant: C = (k + 1) N 2^-52, and the degrees it multiplies.
+struct StaticBound {
+  double C;
+  int deg_len, deg_dir;
+};
+
+constexpr StaticBound static_bound(const ErrorTerm& t) {
+  if (t.k > 40 || t.deg_len + t.deg_dir > 6) throw "line_static_filter: outside the proved range";
+  return {(t.k + 1) * t.N * 0x1p-52, t.deg_len, t.deg_dir};
+}
+
+// ---- The decision polynomials, generic over double and ErrorTerm -----------------------------
+
+template <class T>
+struct SV3 {
+  T x, y, z;
+};
+
+template <class T>
+constexpr T sdot(const SV3<T>& a, const SV3<T>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class T>
+constexpr SV3<T> scross(const SV3<T>& a, const SV3<T>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+template <class T>
+struct CircularPolynomials {
+  // a = |d x A|^2                                  (2, 2)
+  static constexpr T a(const SV3<T>& A, const SV3<T>& d) {
+    const SV3<T> v = scross(d, A);
+    return sdot(v, v);
+  }
+  // r^2 |d x A|^2 - (A.(w x d))^2                  (4, 2)
+  static constexpr T disc(const SV3<T>& A, const SV3<T>& w, const SV3<T>& d, const T& r) {
+    const T e = sdot(A, scross(w, d));
+    return r * r * a(A, d) - e * e;
+  }
+  // |x x A|^2 - r^2 A.A: f at the parameter where x = X - P (x = w: f(0); x = e0: f(1)) (4, 0)
+  static constexpr T excess(const SV3<T>& A, const SV3<T>& x, const T& r) {
+    const SV3<T> u = scross(x, A);
+    return sdot(u, u) - r * r * sdot(A, A);
+  }
+  // x.y for two vectors of degrees that the caller knows ((1,1) or (2,0))
+  static constexpr T dot(const SV3<T>& x, const SV3<T>& y) { return sdot(x, y); }
+  // (x x A).(d x A): b for x = w, a + b for x = e0                              (3, 1)
+  static constexpr T b(const SV3<T>& A, const SV3<T>& x, const SV3<T>& d) { return sdot(scross(x, A), scross(d, A)); }
+  // |A x (x x d)|^2 - r^2 (d.A)^2: the sign of f at the cap plane through x's end     (4, 2)
+  static constexpr T cap_excess(const SV3<T>& A, const SV3<T>& x, const SV3<T>& d, const T& r) {
+    const SV3<T> X = scross(A, scross(x, d));
+    const T sd = sdot(d, A);
+    return sdot(X, X) - r * r * sd * sd;
+  }
+  // (d.d)(x.A) - (x.d)(d.A): minus the sign of (cap - centre) times sign(d.A)          (2, 2)
+  static constexpr T cap_side(const SV3<T>& A, const SV3<T>& x, const SV3<T>& d) {
+    return sdot(d, d) * sdot(x, A) - sdot(x, d) * sdot(d, A);
+  }
+};
+
+namespace static_bounds {
+inline constexpr ErrorTerm len{1, 1, 1, 0};    // a rounded length leaf
+inline constexpr ErrorTerm dir{1, 1, 0, 1};    // a direction component (rounded for segments)
+inline constexpr ErrorTerm radius{1, 0, 1, 0};  // r, exact
+inline constexpr SV3<ErrorTerm> L{len, len, len}, Dv{dir, dir, dir};
+using P = CircularPolynomials<ErrorTerm>;
+inline constexpr StaticBound a = static_bound(P::a(L, Dv));
+inline constexpr StaticBound disc = static_bound(P::disc(L, L, Dv, radius));
+inline constexpr StaticBound excess = static_bound(P::excess(L, L, radius));
+inline constexpr StaticBound dot_ld = static_bound(P::dot(L, Dv));
+inline constexpr StaticBound dot_ll = static_bound(P::dot(L, L));
+inline constexpr StaticBound b = static_bound(P::b(L, L, Dv));
+inline constexpr StaticBound cap_excess = static_bound(P::cap_excess(L, L, Dv, radius));
+inline constexpr StaticBound cap_side = static_bound(P::cap_side(L, L, Dv));
+
+// The same constants derived by hand, as a check of the bookkeeping (C = (k + 1) N u; a
+// rounded leaf has k 1, r has k 0):
+//   x.y: products k 3, N 1; two sums: k 5, N 3.
+static_assert(dot_ld.C == 6 * 3 * 0x1p-52 && dot_ll.C == 6 * 3 * 0x1p-52);
+//   a cross component: k 4, N 2; |.|^2: squares k 9, N 4, two sums: k 11, N 12.
+static_assert(a.C == 12 * 12 * 0x1p-52 && a.deg_len == 2 && a.deg_dir == 2);
+//   e = A.(w x d): products k 1+4+1 = 6, N 2, sums: k 8, N 6; e^2: k 17, N 36;
+//   (r r) a: k 1+11+1 = 13, N 12; difference: k 18, N 48.
+static_assert(disc.C == 19 * 48 * 0x1p-52 && disc.deg_len == 4 && disc.deg_dir == 2);
+//   |x x A|^2: k 11, N 12; (r r)(A.A): k 1+5+1 = 7, N 3; difference: k 12, N 15.
+static_assert(excess.C == 13 * 15 * 0x1p-52 && excess.deg_len == 4 && excess.deg_dir == 0);
+//   (x x A).(d x A): products k 9, N 4; sums: k 11, N 12.
+static_assert(b.C == 12 * 12 * 0x1p-52 && b.deg_len == 3 && b.deg_dir == 1);
+//   X = A x (x x d): products k 1+4+1 = 6, N 2, difference k 7, N 4; |X|^2: k 17, N 48;
+//   ((r r) sd) sd with sd = d.A (k 5, N 3): k 7 then 13, N 9; difference: k 18, N 57.
+static_assert(cap_excess.C == 19 * 57 * 0x1p-52 && cap_excess.deg_len == 4 && cap_excess.deg_dir == 2);
+//   (d.d)(x.A) and (x.d)(d.A): k 5+5+1 = 11, N 9 each; difference: k 12, N 18.
+static_assert(cap_side.C == 13 * 18 * 0x1p-52 && cap_side.deg_len == 2 && cap_side.deg_dir == 2);
+}  // namespace static_bounds
+
+// ---- The stage -----------------------------------------------------------------------------
+
+// The skeleton's sign source for a line, ray or segment (binary64) against a circular cylinder
+// (binary64). Each polynomial sign is computed once, when first needed.
+class StaticCircularSigns {
+ public:
+  StaticCircularSigns(const Vec3<double>& origin, const Vec3<double>& second, bool second_is_point, const Cylinder<double>& cyl)
+      : r_(cyl.radius) {
+    A_ = diff(cyl.p1, cyl.p0);
+    w_ = diff(origin, cyl.p0);
+    w1_ = diff(origin, cyl.p1);
+    double ml = std::max({std::fabs(r_), vmax(A_), vmax(w_), vmax(w1_)});
+    if (second_is_point) {
+      d_ = diff(second, origin);
+      e0_ = diff(second, cyl.p0);
+      e1_ = diff(second, cyl.p1);
+      ml = std::max({ml, vmax(e0_), vmax(e1_)});
+    } else {
+      d_ = {second.x, second.y, second.z};
+      // A ray or line has no t = 1 bound; e0 and e1 are never read.
+      e0_ = e1_ = {0, 0, 0};
+    }
+    const double md = vmax(d_);
+    // The window of the proof (header comment); NaN (an overflowed difference) fails it too.
+    usable_ = ml >= 0x1p-150 && ml <= 0x1p150 && md >= 0x1p-150 && md <= 0x1p150;
+    len_pow_[0] = dir_pow_[0] = 1;
+    for (int i = 1; i < 5; ++i) len_pow_[i] = len_pow_[i - 1] * ml;
+    for (int i = 1; i < 3; ++i) dir_pow_[i] = dir_pow_[i - 1] * md;
+  }
+
+  bool usable() const { return usable_; }
+  bool undecided() const { return undecided_; }
+
+  // B = fl(fl(C mlen^i) mdir^j) of the header comment, for this input's magnitudes.
+  double bound(const StaticBound& b) const { return b.C * len_pow_[b.deg_len] * dir_pow_[b.deg_dir]; }
+
+  // Step 1 and 2 signs of line_shape.
+  CGAL::Sign sign_a() { return cached(kA, [&] { return decide(P::a(A_, d_), static_bounds::a); }); }
+  CGAL::Sign sign_disc() { return cached(kDisc, [&] { return decide(P::disc(A_, w_, d_, r_), static_bounds::disc); }); }
+  CGAL::Sign sign_c() { return cached(kC, [&] { return decide(P::excess(A_, w_, r_), static_bounds::excess); }); }
+  CGAL::Sign sign_sd() { return cached(kSd, [&] { return decide(P::dot(d_, A_), static_bounds::dot_ld); }); }
+  CGAL::Sign sign_sw() { return cached(kSw, [&] { return decide(P::dot(w_, A_), static_bounds::dot_ll); }); }
+  // H - sw = A.A - w.A = -(w1.A)
+  CGAL::Sign sign_H_minus_sw() {
+    return CGAL::opposite(cached(kSw1, [&] { return decide(P::dot(w1_, A_), static_bounds::dot_ll); }));
+  }
+
+  // Bounds are compared by this object itself once the tube and slab states are known.
+  StaticCircularSigns& bounds(TubeState tube, SlabState) {
+    tube_ = tube;
+    return *this;
+  }
+
+  // Sign of value(x) - value(y), as BoundValues::compare.
+  CGAL::Sign compare(BoundKind x, BoundKind y) {
+    if (x == y) return CGAL::ZERO;
+    const bool tx = is_tube(x), ty = is_tube(y);
+    if (tx && ty) {
+      if (tube_ == TubeState::point) return CGAL::ZERO;
+      return x == BoundKind::tube_lo ? CGAL::NEGATIVE : CGAL::POSITIVE;
+    }
+    if (tx) return tube_versus(x, y);
+    if (ty) return CGAL::opposite(tube_versus(y, x));
+    return rational_compare(x, y);
+  }
+
+ private:
+  using P = CircularPolynomials<double>;
+  enum Slot { kA, kDisc, kC, kSd, kSw, kSw1, kB, kF1, kB1, kCapEx0, kCapEx1, kCapSide0, kCapSide1, kE0A, kE1A, kSlots };
+
+  static SV3<double> diff(const Vec3<double>& p, const Vec3<double>& q) { return {p.x - q.x, p.y - q.y, p.z - q.z}; }
+  static double vmax(const SV3<double>& v) { return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}); }
+  static bool is_tube(BoundKind k) { return k == BoundKind::tube_lo || k == BoundKind::tube_hi; }
+
+  CGAL::Sign decide(double v, const StaticBound& b) {
+    const double bound = this->bound(b);
+    if (v > bound) return CGAL::POSITIVE;
+    if (v < -bound) return CGAL::NEGATIVE;
+    undecided_ = true;  // else: |v| within the error bound; the result below is never used
+    return CGAL::ZERO;
+  }
+
+  template <class F>
+  CGAL::Sign cached(Slot s, F&& f) {
+    if (!known_[s]) {
+      sign_[s] = static_cast<std::int8_t>(f());
+      known_[s] = true;
+    }
+    return static_cast<CGAL::Sign>(sign_[s]);
+  }
+
+  // Sign of tube root T - rho for rho a cap or range bound (header comment: F and G).
+  CGAL::Sign tube_versus(BoundKind T, BoundKind rho) {
+    CGAL::Sign F, G;  // sign f(rho), sign(rho - centre)
+    switch (rho) {
+      case BoundKind::range_lo:
+        F = sign_c();
+        G = F == CGAL::NEGATIVE ? CGAL::ZERO : cached(kB, [&] { return decide(P::b(A_, w_, d_), static_bounds::b); });
+        break;
+      case BoundKind::range_hi:
+        F = cached(kF1, [&] { return decide(P::excess(A_, e0_, r_), static_bounds::excess); });
+        G = F == CGAL::NEGATIVE ? CGAL::ZERO : cached(kB1, [&] { return decide(P::b(A_, e0_, d_), static_bounds::b); });
+        break;
+      case BoundKind::cap0:
+        F = cached(kCapEx0, [&] { return decide(P::cap_excess(A_, w_, d_, r_), static_bounds::cap_excess); });
+        G = F == CGAL::NEGATIVE ? CGAL::ZERO
+                                : CGAL::opposite(sign_sd() * cached(kCapSide0, [&] { return decide(P::cap_side(A_, w_, d_), static_bounds::cap_side); }));
+        break;
+      case BoundKind::cap1:
+        F = cached(kCapEx1, [&] { return decide(P::cap_excess(A_, w1_, d_, r_), static_bounds::cap_excess); });
+        G = F == CGAL::NEGATIVE ? CGAL::ZERO
+                                : CGAL::opposite(sign_sd() * cached(kCapSide1, [&] { return decide(P::cap_side(A_, w1_, d_), static_bounds::cap_side); }));
+        break;
+      default: return CGAL::ZERO;  // tube against tube is handled by compare
+    }
+    const bool lo = T == BoundKind::tube_lo;
+    if (F == CGAL::NEGATIVE) return lo ? CGAL::NEGATIVE : CGAL::POSITIVE;
+    if (F == CGAL::POSITIVE) return CGAL::opposite(G);  // both roots on the side opposite to rho's
+    // else: rho is the root on G's side
+    if (G == CGAL::POSITIVE) return lo ? CGAL::NEGATIVE : CGAL::ZERO;
+    if (G == CGAL::NEGATIVE) return lo ? CGAL::ZERO : CGAL::POSITIVE;
+    return CGAL::ZERO;
+  }
+
+  // Sign of value(x) - value(y) for two of cap0, cap1, range_lo, range_hi.
+  CGAL::Sign rational_compare(BoundKind x, BoundKind y) {
+    const bool cx = x == BoundKind::cap0 || x == BoundKind::cap1;
+    const bool cy = y == BoundKind::cap0 || y == BoundKind::cap1;
+    if (cx && cy) return x == BoundKind::cap1 ? sign_sd() : CGAL::opposite(sign_sd());  // cap1 - cap0 = H / sd
+    if (!cx && !cy) return x == BoundKind::range_lo ? CGAL::NEGATIVE : CGAL::POSITIVE;  // 0 - 1
+    if (!cx) return CGAL::opposite(rational_compare(y, x));
+    // cap - 0 = -(x.A)/sd with x = w or w1; cap - 1 = -(e.A)/sd with e = e0 or e1.
+    CGAL::Sign num;
+    if (y == BoundKind::range_lo)
+      num = x == BoundKind::cap0 ? sign_sw() : CGAL::opposite(sign_H_minus_sw());
+    else
+      num = x == BoundKind::cap0 ? cached(kE0A, [&] { return decide(P::dot(e0_, A_), static_bounds::dot_ll); })
+                                 : cached(kE1A, [&] { return decide(P::dot(e1_, A_), static_bounds::dot_ll); });
+    return CGAL::opposite(num * sign_sd());
+  }
+
+  SV3<double> A_, w_, w1_, d_, e0_, e1_;
+  double r_;
+  double len_pow_[5], dir_pow_[3];
+  bool usable_ = false, undecided_ = false;
+  TubeState tube_ = TubeState::empty;
+  bool known_[kSlots] = {};
+  std::int8_t sign_[kSlots] = {};
+};
+
+}  // namespace certcyl::detail
