@@ -15,7 +15,7 @@
 // three are >= 0 (the three constraints are convex and the set is connected), so the sign of the
 // gap is the answer's. Every term is a rational function of the input evaluated at a rational
 // point (the minimiser of a quadratic on an interval with rational ends, or the triangle's
-// point nearest the axis from the certified query), computed in Gmpq and enclosed in doubles.
+// point nearest the axis, from the certified query's exact construction), computed in Gmpq and enclosed in doubles.
 //
 // Cylinder against cylinder: log(phi*), the certified enclosure of certified_cylinder_cylinder
 // (design note section 4; 1/phi* is the growth distance). Equal midpoints: +infinity.
@@ -118,8 +118,14 @@ inline Rational triangle_gap(const Triangle<Rational>& T, const Cylinder<Rationa
   const Rational one = 1;
   Rational gap = std::min({one, smax / AA, one - smin / AA});
   if (gap < 0) return gap;
-  if (!r.closest) throw std::logic_error("study gap: the triangle meets the slab but has no nearest point");
-  return std::min(gap, one - r.squared_distance / (c.radius * c.radius));
+  // The certified query builds X* (the point of T in the closed slab nearest the axis) only when
+  // its certificate needs it; otherwise the exact construction supplies it here.
+  if (r.closest) return std::min(gap, one - r.squared_distance / (c.radius * c.radius));
+  TriangleCylinderResult full;
+  full.answer = r.answer;
+  certcyl::detail::exact_certificate(full, T, c);
+  if (!full.closest) throw std::logic_error("study gap: the triangle meets the slab but has no nearest point");
+  return std::min(gap, one - full.squared_distance / (c.radius * c.radius));
 }
 
 inline Answer answer_of_sign(const Rational& g) {

@@ -21,6 +21,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <ostream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -95,6 +96,8 @@ inline constexpr std::string_view to_string(Outcome o) {
   }
   return "?";
 }
+
+inline std::ostream& operator<<(std::ostream& os, Outcome o) { return os << to_string(o); }
 
 inline std::string answer_label(const MethodOutput& m) {
   if (m.error) return "error";
