@@ -297,14 +297,14 @@ struct Checks {
 
 std::string summary_table(std::map<std::string, Tally>& by_method, const Checks& c) {
   std::ostringstream os;
-  os << std::left << std::setw(34) << "method" << std::setw(16) << "kind" << std::right << std::setw(4) << "q" << std::setw(8) << "n"
+  os << std::left << std::setw(46) << "method" << ' ' << std::setw(16) << "kind" << std::right << std::setw(4) << "q" << std::setw(8) << "n"
      << std::setw(7) << "FP" << std::setw(7) << "FN" << std::setw(7) << "class" << std::setw(7) << "undec" << std::setw(6) << "err"
      << std::setw(10) << "rate" << std::setw(11) << "ns(med)" << '\n';
-  os << std::string(117, '-') << '\n';
+  os << std::string(130, '-') << '\n';
   for (auto& [name, t] : by_method) {
     char rate[32];
     std::snprintf(rate, sizeof rate, "%.2e", t.rate());
-    os << std::left << std::setw(34) << name << std::setw(16) << t.kind << std::right << std::setw(4) << t.queries.size() << std::setw(8)
+    os << std::left << std::setw(46) << name << ' ' << std::setw(16) << t.kind << std::right << std::setw(4) << t.queries.size() << std::setw(8)
        << t.n << std::setw(7) << t.fp << std::setw(7) << t.fn << std::setw(7) << t.cls << std::setw(7) << t.undecided << std::setw(6)
        << t.errors << std::setw(10) << rate << std::setw(11) << std::fixed << std::setprecision(0) << t.median_ns() << '\n';
     os.unsetf(std::ios::fixed);
@@ -593,7 +593,7 @@ void apply_size(StudyOptions& o) {
     int map_cells;
     long hunt;
   };
-  const Preset presets[] = {{"tiny", 3, 16, 20}, {"small", 12, 64, 150}, {"default", 48, 256, 600}, {"large", 400, 256, 5000}};
+  const Preset presets[] = {{"tiny", 3, 16, 20}, {"small", 12, 64, 150}, {"default", 96, 256, 1000}, {"large", 400, 256, 5000}};
   for (const Preset& p : presets) {
     if (o.size == p.name) {
       if (o.per_family == 0) o.per_family = p.per_family;
