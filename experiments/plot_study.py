@@ -41,8 +41,9 @@ def read_csv(path):
 
 
 def save(fig, out, name):
+    fig.tight_layout()
     for ext in ("png", "pdf"):
-        fig.savefig(os.path.join(out, f"{name}.{ext}"), dpi=130, bbox_inches="tight")
+        fig.savefig(os.path.join(out, f"{name}.{ext}"), dpi=110)
     plt.close(fig)
 
 
