@@ -82,14 +82,14 @@ def disagreement_tables(families, out):
 
 
 def gap_bin(lo, hi):
-    """Signed log10 bin of the certified gap: 0 for an exact zero, +-e for 10^(e-1) <= |gap| < 10^e."""
-    if lo == 0 and hi == 0:
+    """Signed log10 bin of the certified gap's bound nearest zero: 0 when the enclosure contains 0
+    (touching, or a gap not resolved from 0), +-(e + 21) for 10^(e-1) <= |gap| < 10^e."""
+    if lo <= 0 <= hi:
         return 0
-    g = (lo + hi) / 2 if math.isfinite(lo) and math.isfinite(hi) else (hi if math.isfinite(hi) else 1e300)
-    if g == 0:
-        g = hi if hi != 0 else lo
-    e = math.floor(math.log10(abs(g))) + 1 if g != 0 else -400
-    e = max(-20, min(2, e))
+    g = lo if lo > 0 else hi
+    if not math.isfinite(g):
+        return 23 if g > 0 else -23
+    e = max(-20, min(2, math.floor(math.log10(abs(g))) + 1))
     return e + 21 if g > 0 else -(e + 21)
 
 
@@ -119,7 +119,7 @@ def gap_rate(rows, out):
                     ys.append(bad / n)
                 if xs:
                     ax.plot(xs, ys, marker="o", ms=3, label=m)
-            ax.set_xlabel("log10 |certified gap| (upper edge of bin)")
+            ax.set_xlabel("log10 of the certified lower bound of |gap| (upper edge of bin)")
             ax.set_title(("separated side (gap < 0)" if side < 0 else "overlapping side (gap > 0)"))
             ax.grid(alpha=0.3)
         axes[0].set_ylabel("disagreement rate (FP + FN)")
