@@ -222,8 +222,8 @@ def failure_maps(folder, out):
                     bad[j, i] = True
             ax.imshow(img, cmap=cmap, vmin=-0.5, vmax=len(CODES) - 0.5, origin="lower", interpolation="nearest")
             if bad.any():
-                ys, xs = np.nonzero(bad)
-                ax.scatter(xs, ys, s=0.4, c="magenta", marker="s", linewidths=0)
+                overlay = np.ma.masked_where(~bad, np.ones((n, n)))
+                ax.imshow(overlay, cmap=ListedColormap(["magenta"]), alpha=0.55, origin="lower", interpolation="nearest")
             ax.set_title(f"{m} ({int(bad.sum())} wrong)", fontsize=7)
             ax.set_xticks([])
             ax.set_yticks([])

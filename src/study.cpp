@@ -488,7 +488,8 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
 // ---- Failure hunting --------------------------------------------------------------------------
 
 // For each method: random restarts at the degenerate configurations of its query's families
-// (k = 0), then a local search over ulp perturbations of single coordinates that keeps the
+// (k = 0), then a local search over ulp perturbations of single coordinates (each coordinate
+// kept within 2^-6 of its start, relative to the largest input coordinate) that keeps the
 // method wrong (false positive or false negative) while pushing the certified lower bound of
 // |gap| up. The result is the wrong answer farthest from any degeneracy that the search found.
 void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& dir) {
@@ -530,6 +531,9 @@ void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& d
       Instance cur;
       cur.query = m.query;
       cur.x = f->make(rng, m.query, 0).x;
+      const std::vector<double> start = cur.x;
+      double scale = 0;
+      for (double v : start) scale = std::max(scale, std::fabs(v));
       MethodOutput cur_out;
       double cur_score = score(cur, cur_out);
       const long steps = budget / restarts;
@@ -539,6 +543,10 @@ void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& d
         const long long e = rng.integer(0, 44);
         const long long step = (1LL << e) * (rng.coin() ? 1 : -1);
         next.x[c] = ulp_step(next.x[c], step);
+        // Stay near the restart's configuration (each coordinate within 2^-6 of its start,
+        // relative to the input's scale): the search asks how far from the degeneracy a method
+        // stays wrong, not where double overflows.
+        if (std::fabs(next.x[c] - start[c]) > 0x1p-6 * scale) continue;
         MethodOutput next_out;
         const double sc = score(next, next_out);
         // Before a first failure, wander; afterwards, only climb.
