@@ -1,13 +1,16 @@
 // Cylinder against cylinder, side by side on the same random pairs: the certified query (exact
-// rational input, and binary64 input taken exactly), and FCL's fcl::collide on two
-// fcl::Cylinderd with its default GJK solver (libccd), when FCL is installed.
+// rational input, and binary64 input taken exactly, with the default options and with the
+// lean ones), Eberly's separating-axis test in double (corrected variant, not certified), and
+// FCL's fcl::collide on two fcl::Cylinderd with its default GJK solver (libccd), when FCL is
+// installed.
 //
 // Pairs: midpoints uniform in [-1, 1]^3, axis directions uniform, lengths in [0.2, 2], radii in
 // [0.05, 0.5] (binary64 values); split by the certified answer into separated and overlapping
 // sets, timed apart. Each benchmark reports the mean time per query (Google Benchmark's figure)
 // and, as counters, the median over pairs of the per-pair time (best of 5 runs per pair).
-// BM_certified_stages reports the fraction of pairs each stage decided and the mean time spent
-// in each stage per query.
+// BM_certified_stages reports, over all pairs (binary64 input, default options), the fraction
+// each stage decided, the fraction each arithmetic proved (static filter, intervals, Gmpq), the
+// fraction that needed any Gmpq check, and the mean time spent in each stage per query.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -17,6 +20,7 @@
 #include <vector>
 
 #include "certcyl/certified/cylinder_cylinder.hpp"
+#include "certcyl/seeds/eberly_cylinders.hpp"
 
 #ifdef CERTCYL_HAVE_FCL
 #include <fcl/narrowphase/collision.h>
@@ -117,6 +121,46 @@ void BM_certified_double_no_gap(benchmark::State& state) {
   run(state, [o](const Pair& p) { return certcyl::certified_cylinder_cylinder(p.a, p.b, o).answer; });
 }
 
+// No stage clock, certificates given as exact binary64 vectors (no Gmpq allocation); the
+// answer is as certified as with the defaults.
+certcyl::CylinderCylinderOptions lean_options(bool gap) {
+  certcyl::CylinderCylinderOptions o;
+  o.time_stages = false;
+  o.rational_certificates = false;
+  o.gap_enclosure = gap;
+  return o;
+}
+
+void BM_certified_double_lean(benchmark::State& state) {
+  const certcyl::CylinderCylinderOptions o = lean_options(true);
+  run(state, [o](const Pair& p) { return certcyl::certified_cylinder_cylinder(p.a, p.b, o).answer; });
+}
+
+void BM_certified_double_lean_no_gap(benchmark::State& state) {
+  const certcyl::CylinderCylinderOptions o = lean_options(false);
+  run(state, [o](const Pair& p) { return certcyl::certified_cylinder_cylinder(p.a, p.b, o).answer; });
+}
+
+// Eberly's test in double, corrected variant (not certified); "disagree" counts pairs where its
+// boolean differs from the certified answer.
+void BM_eberly_double(benchmark::State& state) {
+  const std::vector<Pair>& ps = set(static_cast<int>(state.range(0)));
+  const certcyl::EberlyParameters params = certcyl::EberlyParameters::corrected();
+  const auto f = [&params](const Pair& p) { return certcyl::eberly_separated(p.a, p.b, params).separated; };
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(f(ps[i]));
+    if (++i == ps.size()) i = 0;
+  }
+  double wrong = 0;
+  for (const Pair& p : ps) wrong += f(p) != (state.range(0) == 0);
+  state.counters["median_ns"] = median_ns(ps, f);
+  state.counters["pairs"] = static_cast<double>(ps.size());
+  state.counters["disagree"] = wrong;
+  state.SetLabel(state.range(0) == 0 ? "separated" : "overlapping");
+}
+BENCHMARK(BM_eberly_double)->Arg(0)->Arg(1);
+
 #ifdef CERTCYL_HAVE_FCL
 struct FclPair {
   std::shared_ptr<fcl::Cylinderd> a, b;
@@ -176,16 +220,20 @@ void BM_fcl(benchmark::State& state) {
 BENCHMARK(BM_fcl)->Arg(0)->Arg(1);
 #endif
 
-// Which stage decided, and the time spent per stage, over all pairs (one pass per iteration).
+// Which stage and which arithmetic decided, and the time spent per stage, over all pairs (one
+// pass per iteration).
 void BM_certified_stages(benchmark::State& state) {
   const std::vector<Pair>& ps = pairs().all;
   std::array<double, certcyl::kCylinderStages + 1> decided{};
+  std::array<double, 4> by{};
   std::array<double, certcyl::kCylinderStages> seconds{};
-  double runs = 0;
+  double runs = 0, any_exact = 0;
   for (auto _ : state) {
     for (const Pair& p : ps) {
-      const auto r = certcyl::certified_cylinder_cylinder(p.qa, p.qb);
+      const auto r = certcyl::certified_cylinder_cylinder(p.a, p.b);
       decided[static_cast<std::size_t>(r.stage)] += 1;
+      by[static_cast<std::size_t>(r.certified_by)] += 1;
+      if (r.counters.exact_checks > 0 || r.gmpfr_precision > 0) any_exact += 1;
       for (std::size_t s = 0; s < seconds.size(); ++s) seconds[s] += r.stage_seconds[s];
       runs += 1;
     }
@@ -195,14 +243,19 @@ void BM_certified_stages(benchmark::State& state) {
     state.counters["decided_" + name] = decided[s] / runs;
     if (s < seconds.size()) state.counters["ns_" + name] = 1e9 * seconds[s] / runs;
   }
+  for (std::size_t a = 0; a < by.size(); ++a)
+    state.counters["by_" + std::string(certcyl::to_string(static_cast<certcyl::CylinderArithmetic>(a)))] = by[a] / runs;
   state.counters["beyond_fast_path"] = 1 - (decided[0] + decided[1]) / runs;
   state.counters["beyond_double"] = (decided[3] + decided[4] + decided[5]) / runs;
+  state.counters["any_gmpq_check"] = any_exact / runs;
 }
 BENCHMARK(BM_certified_stages)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 BENCHMARK(BM_certified_rational)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_double)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_double_no_gap)->Arg(0)->Arg(1);
+BENCHMARK(BM_certified_double_lean)->Arg(0)->Arg(1);
+BENCHMARK(BM_certified_double_lean_no_gap)->Arg(0)->Arg(1);
 
 }  // namespace
 

@@ -9,6 +9,7 @@
 #include "certcyl/certified/cylinder_cylinder.hpp"
 #include "certcyl/certified/line_cylinder.hpp"
 #include "certcyl/certified/triangle_cylinder.hpp"
+#include "certcyl/seeds/eberly_cylinders.hpp"
 #include "certcyl/seeds/eberly_triangle_cylinder.hpp"
 #include "certcyl/seeds/gullotti_line_elliptic_cylinder.hpp"
 #include "certcyl/seeds/shene_line_cylinder.hpp"
@@ -104,6 +105,16 @@ DemoCase point_elliptic_case(std::string input, EllipticCylinder<Rational> e, Po
           [e, x] { return std::string(to_string(classify_point(x, e))); }};
 }
 
+DemoCase eberly_cylinders_case(std::string input, Cylinder<Rational> a, Cylinder<Rational> b) {
+  return {"cylinder_cylinder (eberly corr.)", std::move(input),
+          [=](const NumberTypeSpec& spec) {
+            return seed_in(spec, [&]<class NT>() {
+              return std::string(to_string(eberly_separated(convert<NT>(a), convert<NT>(b), EberlyParameters::corrected()).answer));
+            });
+          },
+          [=] { return std::string(to_string(certified_cylinder_cylinder(a, b).answer)); }};
+}
+
 Triangle<Rational> tri(const Point3<Rational>& a, const Point3<Rational>& b, const Point3<Rational>& c) {
   return Triangle<Rational>{{a, b, c}};
 }
@@ -137,6 +148,11 @@ std::vector<DemoCase> demo_cases() {
       eberly_triangle_case("in the cap plane z=1, over the disk", tri({0, 0, 1}, {5, 0, 1}, {0, 5, 1}), unit),
       eberly_triangle_case("vertex on the wall (1,0,1/2)", tri({1, 0, parse_rational("1/2")}, {5, 0, 0}, {5, 1, 1}), unit),
       eberly_triangle_case("2^-30 off the wall", tri({Rational(1) + parse_rational("0x1p-30"), 0, parse_rational("1/2")}, {5, 0, 0}, {5, 1, 1}), unit),
+      // Cylinder pairs: parallel unit cylinders 2 apart touch along a wall line; 2^-40 more
+      // and they are separated; a crossing pair whose skew axes pass 2 - 2^-30 apart overlaps.
+      eberly_cylinders_case("parallel walls touching", {{0, 0, 0}, {0, 0, 2}, 1}, {{2, 0, 0}, {2, 0, 2}, 1}),
+      eberly_cylinders_case("parallel, 2^-40 apart", {{0, 0, 0}, {0, 0, 2}, 1}, {{Rational(2) + parse_rational("0x1p-40"), 0, 0}, {Rational(2) + parse_rational("0x1p-40"), 0, 2}, 1}),
+      eberly_cylinders_case("crossing, axes 2-2^-30 apart", {{0, 0, -2}, {0, 0, 2}, 1}, {{-2, Rational(2) - parse_rational("0x1p-30"), 0}, {2, Rational(2) - parse_rational("0x1p-30"), 0}, 1}),
       eberly_triangle_case("face crossing the axis", tri({-1, -1, parse_rational("1/3")}, {2, -1, parse_rational("1/3")}, {0, 2, parse_rational("2/3")}), unit),
   };
 }

@@ -1,8 +1,11 @@
 // Cylinder against cylinder. Methods: certified (exact three-valued answer with certificate and
-// a certified enclosure of the signed gap log(phi*)).
+// a certified enclosure of the signed gap log(phi*)); eberly_as_written and eberly_corrected
+// (the seed's separating-axis test, generic: --nt; its choices can be set per line through an
+// optional "parameters" object).
 #include "query_cylinder.hpp"
 
 #include "certcyl/io/json_input.hpp"
+#include "certcyl/seeds/eberly_cylinders.hpp"
 #include "query_support.hpp"
 
 namespace certcyl::cli {
@@ -32,18 +35,82 @@ ojson cylinder_cylinder_json(const CylinderCylinderResult& r) {
 
 namespace {
 
+// Reads the optional "parameters" member: the Eberly choices a study sweeps.
+EberlyParameters eberly_parameters(const json& in, EberlyVariant variant) {
+  EberlyParameters p = EberlyParameters::of(variant);
+  auto it = in.find("parameters");
+  if (it == in.end()) return p;
+  if (!it->is_object()) throw InvalidInput("parameters", "expected an object");
+  for (auto m = it->begin(); m != it->end(); ++m) {
+    const std::string field = "parameters." + m.key();
+    auto integer = [&] {
+      if (!m->is_number_integer() || m->get<long long>() < 0 || m->get<long long>() > 100000)
+        throw InvalidInput(field, "expected an integer in [0, 100000]");
+      return static_cast<int>(m->get<long long>());
+    };
+    auto strictness = [&] {
+      if (*m == "strict") return Strictness::strict;
+      if (*m == "non_strict") return Strictness::non_strict;
+      throw InvalidInput(field, "expected \"strict\" or \"non_strict\"");
+    };
+    if (m.key() == "perpendicular_bisections") p.perpendicular_bisections = integer();
+    else if (m.key() == "line_search_bisections") p.line_search_bisections = integer();
+    else if (m.key() == "max_line_searches") p.max_line_searches = integer();
+    else if (m.key() == "axis_tests") p.axis_tests = strictness();
+    else if (m.key() == "perpendicular_tests") p.perpendicular_tests = strictness();
+    else if (m.key() == "other_direction_tests") p.other_direction_tests = strictness();
+    else if (m.key() == "parallel_tests") p.parallel_tests = strictness();
+    else if (m.key() == "parallel_threshold") {
+      if (!m->is_number() || !(m->get<double>() >= 0)) throw InvalidInput(field, "expected a number >= 0");
+      p.parallel_threshold = m->get<double>();
+      p.parallel_test = p.parallel_threshold > 0 ? ParallelTest::threshold : ParallelTest::exact_zero;
+    } else {
+      throw InvalidInput(field, "unknown parameter");
+    }
+  }
+  p.validate();
+  return p;
+}
+
 ojson answer_cylinders(const json& in, const QueryOptions& o) {
   JsonReader reader;
   const Cylinder<Rational> a = reader.cylinder(JsonReader::member(in, "", "a"), "a");
   const Cylinder<Rational> b = reader.cylinder(JsonReader::member(in, "", "b"), "b");
-  (void)o;
-  return cylinder_cylinder_json(certified_cylinder_cylinder(a, b));
+  if (o.method == "certified") return cylinder_cylinder_json(certified_cylinder_cylinder(a, b));
+  const EberlyVariant variant = o.method == "eberly_as_written" ? EberlyVariant::as_written : EberlyVariant::corrected;
+  const EberlyParameters params = eberly_parameters(in, variant);
+  ojson details;
+  ojson out = run_in_number_type(o, reader.all_binary64(), false, [&]<class NT>() -> Answer {
+    if constexpr (!(NumberTraits<NT>::has_sqrt && NumberTraits<NT>::is_field)) {
+      throw InvalidInput("nt", "method " + o.method + " needs a square root and division; " + o.nt.name() +
+                                   " has none (use double, long_double, interval, gmpfr<BITS> or core_expr)");
+    } else {
+      const auto r = eberly_separated(convert<NT>(a), convert<NT>(b), params);
+      details = ojson{{"test", std::string(to_string(r.test))},
+                      {"direction", ojson::array({nt::to_double(r.direction.x), nt::to_double(r.direction.y),
+                                                  nt::to_double(r.direction.z)})},
+                      {"evaluations", ojson{{"F", r.counters.F},
+                                            {"F_derivative", r.counters.F_derivative},
+                                            {"G", r.counters.G},
+                                            {"G_gradient", r.counters.G_gradient},
+                                            {"line_searches", r.counters.line_searches}}}};
+      // As written, the seed returns a boolean: not separated means intersecting.
+      if (variant == EberlyVariant::as_written && !r.separated) return Answer::overlapping;
+      return r.answer;
+    }
+  });
+  if (out["answer"] != "undecided") {
+    if (variant == EberlyVariant::as_written && out["answer"] == "overlapping") out["answer"] = "intersecting";
+    out["separated"] = out["answer"] == "separated";
+    for (auto it = details.begin(); it != details.end(); ++it) out[it.key()] = it.value();
+  }
+  return out;
 }
 
 }  // namespace
 
 void register_cylinder_queries(std::map<std::string, QueryKind>& kinds) {
-  kinds["cylinder_cylinder"] = {"cylinder_cylinder", {"certified"}, answer_cylinders};
+  kinds["cylinder_cylinder"] = {"cylinder_cylinder", {"certified", "eberly_corrected", "eberly_as_written"}, answer_cylinders};
 }
 
 }  // namespace certcyl::cli

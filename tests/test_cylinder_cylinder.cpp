@@ -148,3 +148,97 @@ BOOST_AUTO_TEST_CASE(double_overload_matches_rational) {
   BOOST_TEST(to_string(certified_cylinder_cylinder(a, c).answer) == "separated");
   BOOST_CHECK_THROW(certified_cylinder_cylinder(a, certcyl::Cylinder<double>{{0, 0, 0}, {0, 0, NAN}, 1}), certcyl::InvalidInput);
 }
+
+// Binary64 input: touching constructions with binary64 coordinates, at the exact contact and
+// with the touching coordinate moved one ulp either way (away: separated, into: overlapping,
+// by construction), at three magnitudes (scaled by 2^996 ~ 6.7e299 and 2^-996 ~ 1.5e-300,
+// exactly). Every answer's certificate is rechecked exactly; the static filter must never be
+// the one that decides a touching answer, and it must decide the clear cases (moved 1/4).
+BOOST_AUTO_TEST_CASE(binary64_one_ulp_and_extreme_magnitudes) {
+  using C = certcyl::Cylinder<double>;
+  struct Case {
+    const char* name;
+    C a;
+    // b with its touching coordinate(s) set to t (the contact at t = t0; larger t is away).
+    C (*b)(double t);
+    double t0;
+  };
+  const C a{{0, 0, 0}, {0, 0, 2}, 1};  // z in [0, 2], radius 1
+  const std::array<Case, 4> cases{
+      Case{"cap-cap", a, [](double t) { return C{{1, 0, t}, {1, 0, 5}, 1}; }, 2},
+      Case{"cap-wall", a, [](double t) { return C{{-1, 0, t}, {1, 0, t}, 1}; }, 3},
+      Case{"wall-wall crossing", C{{0, 0, -1}, {0, 0, 1}, 1}, [](double t) { return C{{t, -1, 0}, {t, 1, 0}, 1}; }, 2},
+      Case{"wall-wall parallel", a, [](double t) { return C{{t, 0, 1}, {t, 0, 3}, 1}; }, 2}};
+  const auto scaled = [](const C& c, double s) { return C{s * c.p0, s * c.p1, s * c.radius}; };
+  const auto exact_of = [](const C& c) { return c.map([](double x) { return Q(x); }); };
+  for (const Case& c : cases) {
+    for (const double s : {1.0, std::ldexp(1.0, 996), std::ldexp(1.0, -996)}) {
+      const double up = std::nextafter(c.t0, INFINITY), down = std::nextafter(c.t0, -INFINITY);
+      const std::array<std::pair<double, const char*>, 5> moves{std::pair{c.t0, "touching"}, std::pair{up, "separated"},
+                                                                std::pair{down, "overlapping"}, std::pair{c.t0 + 0.25, "separated"},
+                                                                std::pair{c.t0 - 0.25, "overlapping"}};
+      for (const auto& [t, expected] : moves) {
+        const C A = scaled(c.a, s), B = scaled(c.b(t), s);
+        BOOST_TEST_CONTEXT(c.name << " scale " << s << " t " << t) {
+          const auto r = certified_cylinder_cylinder(A, B);
+          BOOST_TEST(to_string(r.answer) == expected);
+          BOOST_TEST(certificate_error(exact_of(A), exact_of(B), r) == "");
+          if (r.answer == Answer::touching) BOOST_TEST(to_string(r.certified_by) == "exact");
+          if (t == c.t0 + 0.25 || t == c.t0 - 0.25) BOOST_TEST(to_string(r.certified_by) == "static");
+          // The Rational overload agrees.
+          BOOST_TEST(to_string(certified_cylinder_cylinder(exact_of(A), exact_of(B)).answer) == expected);
+        }
+      }
+    }
+  }
+}
+
+// Where the filter's guards fail, the intervals and Gmpq decide. (1) Unit cylinders at
+// x = 2^120: in the scaled frame A.A = 2^-240 < 2^-200. (2) A radius 2^-1000 beside a
+// coordinate 2^1000: the power-of-two scaling would underflow, so the frame is not scaled.
+BOOST_AUTO_TEST_CASE(binary64_outside_the_filter_guards) {
+  using C = certcyl::Cylinder<double>;
+  const double X = std::ldexp(1.0, 120);
+  const C a{{X, 0, 0}, {X, 0, 1}, 1};
+  const auto exact_of = [](const C& c) { return c.map([](double x) { return Q(x); }); };
+  for (const auto& [y, expected] : {std::pair{3.0, "separated"}, std::pair{1.0, "overlapping"}, std::pair{2.0, "touching"}}) {
+    const C b{{X, y, 0}, {X, y, 1}, 1};
+    const auto r = certified_cylinder_cylinder(a, b);
+    BOOST_TEST(to_string(r.answer) == expected, "y " << y);
+    BOOST_TEST(to_string(r.certified_by) != "static");
+    BOOST_TEST(certificate_error(exact_of(a), exact_of(b), r) == "");
+  }
+  const double big = std::ldexp(1.0, 1000), tiny = std::ldexp(1.0, -1000);
+  const C c{{0, 0, 0}, {0, 0, 1}, 1}, d{{big, 0, 0}, {big, 0, 1}, tiny};
+  const auto r = certified_cylinder_cylinder(c, d);
+  BOOST_TEST(to_string(r.answer) == "separated");
+  BOOST_TEST(to_string(r.certified_by) != "static");
+  BOOST_TEST(certificate_error(exact_of(c), exact_of(d), r) == "");
+}
+
+// Options that change the cost, not the answer: without Rational certificates the binary64
+// ones are given (and are the same exact numbers); without the clock the stage times are zero.
+BOOST_AUTO_TEST_CASE(lean_options_same_answers) {
+  certcyl::CylinderCylinderOptions lean;
+  lean.rational_certificates = false;
+  lean.time_stages = false;
+  const certcyl::Cylinder<double> a{{0, 0, 0}, {0, 0, 1}, 1}, sep{{3, 0, 0}, {3, 0, 1}, 1}, ovl{{1, 0, 0}, {1, 0, 1}, 1};
+  const auto r = certified_cylinder_cylinder(a, sep, lean);
+  BOOST_TEST(to_string(r.answer) == "separated");
+  BOOST_TEST(!r.direction.has_value());
+  BOOST_TEST(r.direction_binary64.has_value());
+  BOOST_TEST(r.exact_direction().has_value());
+  BOOST_TEST(certificate_error(cyl({0, 0, 0}, {0, 0, 1}, 1), cyl({3, 0, 0}, {3, 0, 1}, 1), [&] {
+               auto full = r;
+               full.direction = r.exact_direction();
+               return full;
+             }()) == "");
+  for (double t : r.stage_seconds) BOOST_TEST(t == 0);
+  const auto o = certified_cylinder_cylinder(a, ovl, lean);
+  BOOST_TEST(to_string(o.answer) == "overlapping");
+  BOOST_TEST(!o.witness.has_value());
+  BOOST_TEST(o.witness_binary64.has_value());
+  const auto d = certified_cylinder_cylinder(a, ovl);
+  BOOST_TEST(d.witness.has_value());
+  BOOST_TEST((*d.witness == *o.exact_witness()));
+}

@@ -5,6 +5,8 @@
 #include <CGAL/CORE_Expr.h>
 
 #include <array>
+#include <cmath>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -104,8 +106,27 @@ inline int position(const Point3<Q>& X, const Cylinder<Q>& c) {  // 1 inside, 0 
   return 1;
 }
 
-// sign(|D.Delta| - phi(D)) in CORE::Expr with square roots (not by squaring).
-inline int separation_sign_core(const Cylinder<Q>& a, const Cylinder<Q>& b, const Vec3<Q>& D) {
+// x 2^-e with 2^e near the largest magnitude among xs (exact); 1 for all zero.
+inline Q power_of_two_scale(std::initializer_list<Q> xs) {
+  double m = 0;
+  for (const Q& x : xs) m = std::max(m, std::abs(CGAL::to_double(x)));
+  if (!(m > 0)) return Q(1);
+  int e;
+  std::frexp(m, &e);
+  Q f(1);
+  if (e > 0) mpq_div_2exp(f.mpq(), f.mpq(), static_cast<mp_bitcnt_t>(e));
+  if (e < 0) mpq_mul_2exp(f.mpq(), f.mpq(), static_cast<mp_bitcnt_t>(-e));
+  return f;
+}
+
+// sign(|D.Delta| - phi(D)) in CORE::Expr with square roots (not by squaring). The sign is
+// homogeneous in the input and in D, so both are first scaled by powers of two to magnitudes
+// near 1: CORE's floating filter misjudges signs of values near the subnormal range.
+inline int separation_sign_core(const Cylinder<Q>& a0, const Cylinder<Q>& b0, const Vec3<Q>& D0) {
+  const Q f = power_of_two_scale({a0.p0.x, a0.p0.y, a0.p0.z, a0.p1.x, a0.p1.y, a0.p1.z, a0.radius, b0.p0.x, b0.p0.y, b0.p0.z, b0.p1.x,
+                                  b0.p1.y, b0.p1.z, b0.radius});
+  const Cylinder<Q> a = scale(a0, f), b = scale(b0, f);
+  const Vec3<Q> D = power_of_two_scale({D0.x, D0.y, D0.z}) * D0;
   using E = CORE::Expr;
   auto e = [](const Q& q) { return E(CORE::BigRat(q.mpq())); };
   const Vec3<Q> A0 = a.p1 - a.p0, A1 = b.p1 - b.p0;
@@ -124,7 +145,7 @@ inline std::string certificate_error(const Cylinder<Q>& a, const Cylinder<Q>& b,
     case Answer::separated:
       if (!r.direction) return "separated without a direction";
       if (separation_sign_core(a, b, *r.direction) <= 0) return "direction does not separate";
-      if (!(r.gap_known && r.phi_lower < 1)) return "separated but phi_lower >= 1";
+      if (r.gap_known && !(r.phi_lower < 1)) return "separated but phi_lower >= 1";
       return "";
     case Answer::overlapping:
       if (!r.witness) return "overlapping without a witness";

@@ -145,6 +145,7 @@ BOOST_AUTO_TEST_CASE(random_pairs_against_independent_checks) {
     BOOST_TEST_CONTEXT("pair " << i << " seed " << kSeed) {
       BOOST_TEST(certificate_error(a, b, r) == "");
       BOOST_TEST(to_string(r.answer) != "undecided");
+      BOOST_TEST(r.gap_known);
       BOOST_TEST(to_string(certified_cylinder_cylinder(p.a, p.b).answer) == to_string(r.answer));
       BOOST_TEST(to_string(certified_cylinder_cylinder(b, a).answer) == to_string(r.answer));
       if (!r.gap_known) continue;
@@ -202,4 +203,176 @@ BOOST_AUTO_TEST_CASE(random_motions_of_touching_pairs) {
       BOOST_TEST(to_string(certified_cylinder_cylinder(c.a, translate(c.b, -eps * c.normal)).answer) == "overlapping");
     }
   }
+}
+
+// ---- the static filter against Gmpq on the same certificate ----------------------------------
+namespace {
+
+namespace cd = certcyl::detail;
+using certcyl::detail::StaticSign;
+
+// A pair moved to the world frame the way the solver does it (|x| < 2, exact power of two).
+struct World {
+  Cylinder<double> a, b;
+  cd::StaticPair s;
+  cd::CylinderPair<Q> q;
+};
+
+World world(const Pair& p) {
+  double m = 0;
+  for (const Cylinder<double>* c : {&p.a, &p.b})
+    for (double x : {c->p0.x, c->p0.y, c->p0.z, c->p1.x, c->p1.y, c->p1.z, c->radius}) m = std::max(m, std::abs(x));
+  const double k = cd::power_of_two_normaliser(m);
+  const auto sc = [k](double x) { return x * k; };
+  World w{p.a.map(sc), p.b.map(sc), {}, {}};
+  w.s = cd::StaticPair::make(w.a, w.b);
+  w.q = cd::CylinderPair<Q>::make(exact(w.a), exact(w.b));
+  return w;
+}
+
+// D scaled by a power of two to |D_i| < 2 (what the solver certifies).
+D3 normalised(const D3& D) {
+  const double k = cd::power_of_two_normaliser(std::max({std::abs(D.x), std::abs(D.y), std::abs(D.z)}));
+  return k * D;
+}
+
+Vec3<Q> exact(const D3& v) {
+  return v.map([](double x) { return Q(x); });
+}
+
+struct FilterTally {
+  int decided = 0, unknown = 0, zero = 0;
+};
+
+// The filter's sign must equal the exact sign whenever it decides; its ratio bound must be an
+// upper bound, exactly: U |D.T| - |D.A0| - |D.A1| - sqrt(p) - sqrt(q) >= 0.
+void check_direction_filter(const World& w, const D3& D0, FilterTally& t) {
+  const D3 D = normalised(D0);
+  if (!(dot(D, D) > 0)) return;
+  const cd::StaticDirection sd = cd::static_direction(w.s, D);
+  const StaticSign g = cd::static_separation_sign(sd);
+  const Vec3<Q> E = exact(D);
+  const CGAL::Sign truth = cd::separation_sign(w.q, E);
+  if (truth == CGAL::ZERO) ++t.zero;
+  if (g == StaticSign::unknown) {
+    ++t.unknown;
+  } else {
+    ++t.decided;
+    BOOST_TEST((g == StaticSign::positive ? CGAL::POSITIVE : CGAL::NEGATIVE) == truth);
+  }
+  const double U = cd::static_ratio_upper(sd);
+  if (std::isfinite(U)) {
+    const cd::SeparationTerms<Q> x = cd::separation_terms(w.q, E);
+    const Q dT = dot(E, w.q.T) < 0 ? Q(-dot(E, w.q.T)) : dot(E, w.q.T);
+    // c' = U |D.T| - |D.A0| - |D.A1| = c + (U - 1) |D.T|.
+    BOOST_TEST(cd::sign_c_minus_roots(Q(x.c + (Q(U) - 1) * dT), x.p, x.q) != CGAL::NEGATIVE);
+  }
+}
+
+// Same for points: inside-both decisions and the sigma bound, exactly:
+// sigma AA >= |2s - AA| and sigma^2 r^2 AA >= |w x A|^2 for both cylinders.
+void check_point_filter(const World& w, const D3& X, FilterTally& t) {
+  const cd::StaticPoint sp = cd::static_point(w.s, X);
+  const StaticSign g = cd::static_inside_both(sp);
+  const Point3<Q> E = exact(X);
+  const bool truth = cd::strictly_inside_both(w.q, E);
+  if (g == StaticSign::unknown) {
+    ++t.unknown;
+  } else {
+    ++t.decided;
+    BOOST_TEST((g == StaticSign::positive) == truth);
+  }
+  const double sigma = cd::static_sigma_upper(w.s, sp);
+  if (std::isfinite(sigma)) {
+    const Q S(sigma);
+    for (const Cylinder<Q>* c : {&w.q.c0, &w.q.c1}) {
+      const Vec3<Q> A = c->p1 - c->p0, v = E - c->p0;
+      const Q AA = dot(A, A), s = dot(v, A), two_s = 2 * s - AA;
+      BOOST_TEST(S * AA >= (two_s < 0 ? Q(-two_s) : two_s));
+      const Vec3<Q> x = cross(v, A);
+      BOOST_TEST(S * S * c->radius * c->radius * AA >= dot(x, x));
+    }
+  }
+}
+
+}  // namespace
+
+// Thousands of random pairs: random directions and points, the solver's candidates, and
+// near-degenerate ones (the second cylinder moved along D until |D.T| = phi2(D)(1 +- 2^-j) in
+// double, j from 10 to 55, then rounded: the exact sign is from 2^-10 relative down to a few ulps
+// from zero; points on a cylinder's surface, rounded). The filter may say unknown, never the wrong sign.
+BOOST_AUTO_TEST_CASE(static_filter_never_contradicts_gmpq) {
+  BOOST_TEST_MESSAGE("seed " << kSeed + 2);
+  std::mt19937_64 g(kSeed + 2);
+  std::uniform_real_distribution<double> u(-1, 1), unit(0, 1);
+  FilterTally dir, near_dir, pt, near_pt;
+  for (int i = 0; i < 2000; ++i) {
+    const Pair p0{random_cylinder(g), random_cylinder(g)};
+    const World w = world(p0);
+    if (!w.s.usable) continue;
+    const D3 A0 = w.a.p1 - w.a.p0, A1 = w.b.p1 - w.b.p0, T = (w.b.p0 + w.b.p1) - (w.a.p0 + w.a.p1);
+    for (const D3& D : {T, cross(A0, A1), A0, A1, D3{u(g), u(g), u(g)}, D3{u(g), u(g), u(g)}}) check_direction_filter(w, D, dir);
+    for (int k = 0; k < 3; ++k) check_point_filter(w, D3{2 * u(g), 2 * u(g), 2 * u(g)}, pt);
+    // Near-degenerate direction: translate b along D so that D.T = phi2(D) (double), rounded.
+    {
+      const D3 D = normalised(D3{u(g), u(g), u(g)});
+      const double n = dot(D, D);
+      if (n > 1e-3) {
+        const double ratio_now = ratio(Pair{w.a, w.b}, D);  // phi(D) / |D.Delta| = phi2(D) / |D.T|
+        const double dT = dot(D, T), phi2 = ratio_now * std::abs(dT);
+        // T + 2 t D has D.T = +-phi2 (1 + delta), delta = +-2^-j: from a few ulps to 2^-10.
+        const double delta = (unit(g) < 0.5 ? -1 : 1) * std::ldexp(1.0, -static_cast<int>(10 + 46 * unit(g)));
+        const double target = phi2 * (1 + delta);
+        const double t = ((dT >= 0 ? target : -target) - dT) / (2 * n);
+        const Cylinder<double> b{w.b.p0 + t * D, w.b.p1 + t * D, w.b.radius};
+        const World v = world(Pair{w.a, b});
+        if (v.s.usable) check_direction_filter(v, D, near_dir);
+      }
+    }
+    // Near-degenerate points: on cylinder a's wall, its rim, its cap disk (rounded), b's endpoint.
+    {
+      const D3 A = A0;
+      D3 e = cross(A, D3{u(g), u(g), u(g)});
+      const double el = std::sqrt(dot(e, e));
+      if (el > 1e-6) {
+        e = (w.a.radius / el) * e;
+        const double s = unit(g), f = unit(g);
+        check_point_filter(w, w.a.p0 + s * A + e, near_pt);
+        check_point_filter(w, w.a.p1 + e, near_pt);
+        check_point_filter(w, w.a.p0 + f * e, near_pt);
+        check_point_filter(w, w.b.p1, near_pt);  // exactly on b's cap: never strictly inside
+      }
+    }
+  }
+  BOOST_TEST_MESSAGE("directions: decided " << dir.decided << ", unknown " << dir.unknown << "; near-degenerate: decided "
+                                            << near_dir.decided << ", unknown " << near_dir.unknown << ", exactly zero "
+                                            << near_dir.zero);
+  BOOST_TEST_MESSAGE("points: decided " << pt.decided << ", unknown " << pt.unknown << "; near-degenerate: decided " << near_pt.decided
+                                        << ", unknown " << near_pt.unknown);
+  // The filter is useful: it decides nearly every clear case ...
+  BOOST_TEST(dir.decided > 0.99 * (dir.decided + dir.unknown));
+  BOOST_TEST(pt.decided > 0.99 * (pt.decided + pt.unknown));
+  // ... and the near-degenerate sets really are near-degenerate (many left undecided).
+  BOOST_TEST(near_dir.unknown > 100);
+  BOOST_TEST(near_dir.decided > 100);
+  BOOST_TEST(near_pt.unknown > 100);
+}
+
+// Which arithmetic proved the answers of random pairs (double input): the filter should carry
+// nearly all of them, and the exact stages almost none.
+BOOST_AUTO_TEST_CASE(random_pairs_stage_rates) {
+  BOOST_TEST_MESSAGE("seed " << kSeed + 3);
+  std::mt19937_64 g(kSeed + 3);
+  int by[4] = {0, 0, 0, 0}, beyond_fast = 0;
+  const int N = 4000;
+  for (int i = 0; i < N; ++i) {
+    const Pair p{random_cylinder(g), random_cylinder(g)};
+    const certcyl::CylinderCylinderResult r = certified_cylinder_cylinder(p.a, p.b);
+    ++by[static_cast<int>(r.certified_by)];
+    if (r.stage != certcyl::CylinderStage::fast_path && r.stage != certcyl::CylinderStage::midpoints) ++beyond_fast;
+  }
+  BOOST_TEST_MESSAGE("certified by: static " << by[0] << ", interval " << by[1] << ", exact " << by[2] << ", none " << by[3]
+                                             << " of " << N << "; beyond the fast path " << beyond_fast);
+  BOOST_TEST(by[0] > 0.99 * N);
+  BOOST_TEST(by[3] == 0);
 }

@@ -95,7 +95,7 @@ double worst_error_ratio(const Query& x) {
     const double ratio = CGAL::to_double((err < 0 ? Q(-err) : err) / Q(bound));
     worst = std::max(worst, ratio);
   };
-  namespace sb = static_bounds;
+  namespace sb = line_static_bounds;
   check(PD::a(A, d), PQ::a(Aq, d_q), sb::a);
   check(PD::disc(A, w, d, r), PQ::disc(Aq, wq, d_q, rq), sb::disc);
   check(PD::excess(A, w, r), PQ::excess(Aq, wq, rq), sb::excess);

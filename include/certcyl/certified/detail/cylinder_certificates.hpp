@@ -37,6 +37,7 @@
 #include <gmp.h>
 
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <type_traits>
 #include <utility>
@@ -154,15 +155,15 @@ auto interval_attempt(F&& f) -> std::optional<decltype(f())> {
 
 // ---- conversions of exact input --------------------------------------------------------------
 
-// True (and d set) when q is exactly a binary64 value with a numerator below 2^53 and a
-// denominator 2^k, k <= 960 (so no subnormal result): the common case of binary64 input,
-// read from the limbs without allocation or division.
+// True (and d set) when q is exactly a normal binary64 value (or zero) with a numerator below
+// 2^53 and a denominator 2^k: the common case of binary64 input, read from the limbs without
+// allocation or division. (Integers of 54 bits or more and subnormals are left out.)
 inline bool exact_double(const Rational& q, double& d) {
   static_assert(GMP_LIMB_BITS == 64, "exact_double reads 64-bit limbs");
   mpz_srcptr num = mpq_numref(q.mpq());
   mpz_srcptr den = mpq_denref(q.mpq());
   const std::size_t num_limbs = mpz_size(num), den_limbs = mpz_size(den);
-  if (num_limbs > 1 || den_limbs > 15) return false;
+  if (num_limbs > 1 || den_limbs > 18) return false;
   for (std::size_t i = 0; i + 1 < den_limbs; ++i)
     if (mpz_getlimbn(den, static_cast<mp_size_t>(i)) != 0) return false;
   const mp_limb_t top = mpz_getlimbn(den, static_cast<mp_size_t>(den_limbs - 1));
@@ -170,8 +171,9 @@ inline bool exact_double(const Rational& q, double& d) {
   const mp_limb_t n = num_limbs == 0 ? 0 : mpz_getlimbn(num, 0);
   if (n >> 53 != 0) return false;
   const int k = static_cast<int>(64 * (den_limbs - 1)) + __builtin_ctzll(top);
-  if (k > 960) return false;
-  const double magnitude = std::ldexp(static_cast<double>(n), -k);  // exact
+  if (k > 1100) return false;
+  const double magnitude = std::ldexp(static_cast<double>(n), -k);  // exact when normal
+  if (n != 0 && !(magnitude >= std::numeric_limits<double>::min())) return false;
   d = mpz_sgn(num) < 0 ? -magnitude : magnitude;
   return true;
 }

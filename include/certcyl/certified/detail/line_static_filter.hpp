@@ -149,7 +149,7 @@ struct CircularPolynomials {
   }
 };
 
-namespace static_bounds {
+namespace line_static_bounds {
 inline constexpr ErrorTerm len{1, 1, 1, 0};    // a rounded length leaf
 inline constexpr ErrorTerm dir{1, 1, 0, 1};    // a direction component (rounded for segments)
 inline constexpr ErrorTerm radius{1, 0, 1, 0};  // r, exact
@@ -182,7 +182,7 @@ static_assert(b.C == 12 * 12 * 0x1p-52 && b.deg_len == 3 && b.deg_dir == 1);
 static_assert(cap_excess.C == 19 * 57 * 0x1p-52 && cap_excess.deg_len == 4 && cap_excess.deg_dir == 2);
 //   (d.d)(x.A) and (x.d)(d.A): k 5+5+1 = 11, N 9 each; difference: k 12, N 18.
 static_assert(cap_side.C == 13 * 18 * 0x1p-52 && cap_side.deg_len == 2 && cap_side.deg_dir == 2);
-}  // namespace static_bounds
+}  // namespace line_static_bounds
 
 // ---- The stage -----------------------------------------------------------------------------
 
@@ -221,14 +221,14 @@ class StaticCircularSigns {
   double bound(const StaticBound& b) const { return b.C * len_pow_[b.deg_len] * dir_pow_[b.deg_dir]; }
 
   // Step 1 and 2 signs of line_shape.
-  CGAL::Sign sign_a() { return cached(kA, [&] { return decide(P::a(A_, d_), static_bounds::a); }); }
-  CGAL::Sign sign_disc() { return cached(kDisc, [&] { return decide(P::disc(A_, w_, d_, r_), static_bounds::disc); }); }
-  CGAL::Sign sign_c() { return cached(kC, [&] { return decide(P::excess(A_, w_, r_), static_bounds::excess); }); }
-  CGAL::Sign sign_sd() { return cached(kSd, [&] { return decide(P::dot(d_, A_), static_bounds::dot_ld); }); }
-  CGAL::Sign sign_sw() { return cached(kSw, [&] { return decide(P::dot(w_, A_), static_bounds::dot_ll); }); }
+  CGAL::Sign sign_a() { return cached(kA, [&] { return decide(P::a(A_, d_), line_static_bounds::a); }); }
+  CGAL::Sign sign_disc() { return cached(kDisc, [&] { return decide(P::disc(A_, w_, d_, r_), line_static_bounds::disc); }); }
+  CGAL::Sign sign_c() { return cached(kC, [&] { return decide(P::excess(A_, w_, r_), line_static_bounds::excess); }); }
+  CGAL::Sign sign_sd() { return cached(kSd, [&] { return decide(P::dot(d_, A_), line_static_bounds::dot_ld); }); }
+  CGAL::Sign sign_sw() { return cached(kSw, [&] { return decide(P::dot(w_, A_), line_static_bounds::dot_ll); }); }
   // H - sw = A.A - w.A = -(w1.A)
   CGAL::Sign sign_H_minus_sw() {
-    return CGAL::opposite(cached(kSw1, [&] { return decide(P::dot(w1_, A_), static_bounds::dot_ll); }));
+    return CGAL::opposite(cached(kSw1, [&] { return decide(P::dot(w1_, A_), line_static_bounds::dot_ll); }));
   }
 
   // Bounds are compared by this object itself once the tube and slab states are known.
@@ -281,21 +281,21 @@ class StaticCircularSigns {
     switch (rho) {
       case BoundKind::range_lo:
         F = sign_c();
-        G = F == CGAL::NEGATIVE ? CGAL::ZERO : cached(kB, [&] { return decide(P::b(A_, w_, d_), static_bounds::b); });
+        G = F == CGAL::NEGATIVE ? CGAL::ZERO : cached(kB, [&] { return decide(P::b(A_, w_, d_), line_static_bounds::b); });
         break;
       case BoundKind::range_hi:
-        F = cached(kF1, [&] { return decide(P::excess(A_, e0_, r_), static_bounds::excess); });
-        G = F == CGAL::NEGATIVE ? CGAL::ZERO : cached(kB1, [&] { return decide(P::b(A_, e0_, d_), static_bounds::b); });
+        F = cached(kF1, [&] { return decide(P::excess(A_, e0_, r_), line_static_bounds::excess); });
+        G = F == CGAL::NEGATIVE ? CGAL::ZERO : cached(kB1, [&] { return decide(P::b(A_, e0_, d_), line_static_bounds::b); });
         break;
       case BoundKind::cap0:
-        F = cached(kCapEx0, [&] { return decide(P::cap_excess(A_, w_, d_, r_), static_bounds::cap_excess); });
+        F = cached(kCapEx0, [&] { return decide(P::cap_excess(A_, w_, d_, r_), line_static_bounds::cap_excess); });
         G = F == CGAL::NEGATIVE ? CGAL::ZERO
-                                : CGAL::opposite(sign_sd() * cached(kCapSide0, [&] { return decide(P::cap_side(A_, w_, d_), static_bounds::cap_side); }));
+                                : CGAL::opposite(sign_sd() * cached(kCapSide0, [&] { return decide(P::cap_side(A_, w_, d_), line_static_bounds::cap_side); }));
         break;
       case BoundKind::cap1:
-        F = cached(kCapEx1, [&] { return decide(P::cap_excess(A_, w1_, d_, r_), static_bounds::cap_excess); });
+        F = cached(kCapEx1, [&] { return decide(P::cap_excess(A_, w1_, d_, r_), line_static_bounds::cap_excess); });
         G = F == CGAL::NEGATIVE ? CGAL::ZERO
-                                : CGAL::opposite(sign_sd() * cached(kCapSide1, [&] { return decide(P::cap_side(A_, w1_, d_), static_bounds::cap_side); }));
+                                : CGAL::opposite(sign_sd() * cached(kCapSide1, [&] { return decide(P::cap_side(A_, w1_, d_), line_static_bounds::cap_side); }));
         break;
       default: return CGAL::ZERO;  // tube against tube is handled by compare
     }
@@ -320,8 +320,8 @@ class StaticCircularSigns {
     if (y == BoundKind::range_lo)
       num = x == BoundKind::cap0 ? sign_sw() : CGAL::opposite(sign_H_minus_sw());
     else
-      num = x == BoundKind::cap0 ? cached(kE0A, [&] { return decide(P::dot(e0_, A_), static_bounds::dot_ll); })
-                                 : cached(kE1A, [&] { return decide(P::dot(e1_, A_), static_bounds::dot_ll); });
+      num = x == BoundKind::cap0 ? cached(kE0A, [&] { return decide(P::dot(e0_, A_), line_static_bounds::dot_ll); })
+                                 : cached(kE1A, [&] { return decide(P::dot(e1_, A_), line_static_bounds::dot_ll); });
     return CGAL::opposite(num * sign_sd());
   }
 
