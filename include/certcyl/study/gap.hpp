@@ -13,7 +13,11 @@
 //            (left out when the query set misses the closed slab; then m_cap0 or m_cap1 < 0).
 // The set meets the open solid iff all three are positive, and meets the closed solid iff all
 // three are >= 0 (the three constraints are convex and the set is connected), so the sign of the
-// gap is the answer's. Every term is a rational function of the input evaluated at a rational
+// gap is the answer's. When it is negative, its size is instead the largest depth
+// d(X) = min(1 - q(X), s(X), 1 - s(X)) over a few rational sample points X of the set (the
+// point nearest the axis, the slab crossings, the mid-height crossing): every d(X) is at most
+// max_X d(X) < 0, so the sign stays exact and |gap| bounds the depth the set lacks. Every term
+// is a rational function of the input evaluated at a rational
 // point (the minimiser of a quadratic on an interval with rational ends, or the triangle's
 // point nearest the axis, from the certified query's exact construction), computed in Gmpq and enclosed in doubles.
 //
@@ -28,6 +32,7 @@
 #include <optional>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "certcyl/certified/cylinder_cylinder.hpp"
 #include "certcyl/certified/line_cylinder.hpp"
@@ -68,16 +73,38 @@ inline Rational line_depth(const Rational& qa, const Rational& qb, const Rationa
   };
   const Rational m0 = sup_linear(s0, s1), m1 = sup_linear(one - s0, -s1);
   Rational gap = std::min(m0, m1);
-  if (gap < 0) return gap;
   // The range within the closed slab 0 <= s <= 1.
+  std::optional<Rational> slo = lo, shi = hi;
   if (s1 != 0) {
     Rational a = -s0 / s1, b = (one - s0) / s1;
     if (a > b) std::swap(a, b);
-    if (!lo || a > *lo) lo = a;
-    if (!hi || b < *hi) hi = b;
+    if (!slo || a > *slo) slo = a;
+    if (!shi || b < *shi) shi = b;
   }
-  const Rational tube = one - min_quadratic(qa, qb, qc, lo, hi);
-  return std::min(gap, tube);
+  if (gap >= 0) gap = std::min(gap, one - min_quadratic(qa, qb, qc, slo, shi));
+  if (gap >= 0) return gap;
+  // Separated: the size is taken from the depth d(t) = min(1 - q, s, 1 - s) of sample points,
+  // each a lower bound of max_t d(t) < 0 (so |gap| bounds the depth the set lacks). Without
+  // this, a line nearly parallel to a cap plane just outside the slab would be measured at its
+  // far crossing of the slab.
+  auto clamp = [&](Rational t) {
+    if (lo && t < *lo) t = *lo;
+    if (hi && t > *hi) t = *hi;
+    return t;
+  };
+  std::vector<Rational> ts{clamp(0)};
+  if (qa != 0) ts.push_back(clamp(-qb / (2 * qa)));
+  if (s1 != 0) ts.push_back(clamp((Rational(1, 2) - s0) / s1));
+  if (slo) ts.push_back(clamp(*slo));
+  if (shi) ts.push_back(clamp(*shi));
+  Rational best = gap;
+  bool first = true;
+  for (const Rational& t : ts) {
+    const Rational s = s0 + s1 * t;
+    const Rational d = std::min({one - ((qa * t + qb) * t + qc), s, one - s});
+    if (first || d > best) best = d, first = false;
+  }
+  return best;
 }
 
 inline std::pair<double, double> enclose_rational(const Rational& q) {
