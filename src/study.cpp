@@ -116,8 +116,12 @@ Row parse_row(const std::string& line) {
 
 // Runs a method and measures it: one timed call; calls under 2 us are repeated 16 times and
 // the mean of the repetitions is reported (the clock costs ~20 ns per reading).
+std::mutex serial_mutex;
+
 std::pair<MethodOutput, double> timed(const Method& m, const std::vector<double>& x) {
   using clock = std::chrono::steady_clock;
+  std::unique_lock<std::mutex> lock(serial_mutex, std::defer_lock);
+  if (m.serial) lock.lock();  // before the clock starts: waiting is not the method's time
   MethodOutput out;
   auto t0 = clock::now();
   try {
@@ -137,6 +141,8 @@ std::pair<MethodOutput, double> timed(const Method& m, const std::vector<double>
 }
 
 MethodOutput run_quiet(const Method& m, const std::vector<double>& x) {
+  std::unique_lock<std::mutex> lock(serial_mutex, std::defer_lock);
+  if (m.serial) lock.lock();
   try {
     return m.run(x);
   } catch (const std::exception&) {
@@ -661,6 +667,7 @@ int run_study(StudyOptions o, std::ostream& out) {
   register_triangle_methods(registry);
   register_cylinder_methods(registry);
   const std::vector<std::string> peers = register_peer_methods(registry);
+  mark_serial(registry);
 
   fs::path dir = fs::path(o.out_root) / o.name;
   const bool sharded = o.shard_count > 1;
@@ -677,7 +684,7 @@ int run_study(StudyOptions o, std::ostream& out) {
     for (const Method& m : registry) {
       // The slow types run on a pseudo-random 1/stride of each family (not every stride-th
       // index, which would pick the k = 0 instances: ulp_offset makes every 8th one k = 0).
-      if (m.query != inst.query || mix(0, p.index_in_family) % m.stride != 0 || !keep_name(o.methods, m.name())) continue;
+      if (m.query != inst.query || (mix(0, p.index_in_family) >> 32) % m.stride != 0 || !keep_name(o.methods, m.name())) continue;
       const auto [res, ns] = timed(m, inst.x);
       Row r;
       r.family = inst.family, r.query = std::string(to_string(inst.query)), r.instance = inst.id, r.k = p.k;

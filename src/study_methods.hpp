@@ -39,6 +39,12 @@ auto to_nt(const Prim& p) {
   return p.map([](double d) { return from_binary64<NT>(d); });
 }
 
+// Marks the methods that must not run concurrently (CORE::Expr).
+inline void mark_serial(study::Registry& r) {
+  for (study::Method& m : r)
+    if (m.nt == "core_expr") m.serial = true;
+}
+
 void register_line_methods(study::Registry& r);
 void register_triangle_methods(study::Registry& r);
 void register_cylinder_methods(study::Registry& r);
@@ -51,6 +57,7 @@ inline study::Registry all_methods_registry() {
   register_triangle_methods(r);
   register_cylinder_methods(r);
   register_peer_methods(r);
+  mark_serial(r);
   return r;
 }
 

@@ -77,6 +77,8 @@ struct Method {
   unsigned stride = 1;
   bool cheap = true;
   std::function<MethodOutput(const std::vector<double>&)> run;
+  // Runs one call at a time across threads (CORE::Expr's memory pools are shared).
+  bool serial = false;
 
   std::string name() const { return base + "/" + nt; }
 };
