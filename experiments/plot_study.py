@@ -8,6 +8,7 @@ Writes PNG and PDF into results/<name>/figures/:
   gap_rate_<query>       disagreement rate against the certified signed gap, log-binned
   pareto                 median ns per query against disagreement rate, per query
   t_error                line queries: error of the entry parameter t in ulps, per method
+  pareto_t_error         line queries: median ns against the 99th percentile of the t error
   map_<name>             failure maps: each method's answer on the ulp grid, disagreements marked
 Needs matplotlib and numpy (Debian python3-matplotlib, python3-numpy).
 """
@@ -179,9 +180,36 @@ def t_error(rows, out):
         ax.scatter(np.percentile(v, [50, 90, 99, 100]), [i] * 4, c=["tab:blue", "tab:green", "tab:orange", "tab:red"], s=12)
     ax.set_yticks(range(len(keys)), [f"{q}: {m}" for q, m in keys], fontsize=6)
     ax.set_xscale("log")
-    ax.set_xlabel("1 + |t - t_exact| in ulps of t_exact's nearest double (median, p90, p99, max)")
+    ax.set_xlabel("1 + |t - t*| in ulps of max(|t*|, 1) (median, p90, p99, max)")
     ax.grid(alpha=0.3)
     save(fig, out, "t_error")
+
+    # Speed against the error of t: median ns per query against the 99th percentile of the
+    # t error, per line query and method.
+    ns = defaultdict(list)
+    kinds = {}
+    for r in rows:
+        if (r["query"], r["method"]) in errs:
+            ns[(r["query"], r["method"])].append(fnum(r["ns"]))
+            kinds[r["method"]] = r["kind"]
+    queries = sorted({q for q, _ in keys})
+    fig, axes = plt.subplots(1, len(queries), figsize=(5.5 * len(queries), 4.5), squeeze=False)
+    for ax, q in zip(axes.flat, queries):
+        for (qq, m) in keys:
+            if qq != q:
+                continue
+            x = float(np.median(ns[(qq, m)]))
+            y = float(np.percentile(np.array(errs[(qq, m)]) + 1, 99))
+            ax.scatter(x, y, color=KIND_COLOURS.get(kinds.get(m), "grey"), s=16)
+            ax.annotate(m, (x, y), fontsize=5.5, xytext=(2, 2), textcoords="offset points")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("median ns per query")
+        ax.set_ylabel("99th percentile of 1 + t error (ulps)")
+        ax.set_title(q)
+        ax.grid(alpha=0.3)
+    fig.suptitle("speed against the error of the entry parameter t (line queries)")
+    save(fig, out, "pareto_t_error")
 
 
 CODES = "stoiue"

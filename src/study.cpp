@@ -262,6 +262,15 @@ std::string x_hex(const std::vector<double>& x) {
   return s;
 }
 
+// |t - t*| in units of the ulp of max(|t*|, 1): the parameter's own ulp away from 0, and an
+// absolute measure near 0 (where counting representable doubles would make 1e-17 against 0
+// an error of 2^62 "ulps").
+double t_error_ulps(double t, double exact) {
+  const double scale = std::max(std::fabs(exact), 1.0);
+  const double ulp = std::nextafter(scale, std::numeric_limits<double>::infinity()) - scale;
+  return static_cast<double>(std::fabs(static_cast<long double>(t) - static_cast<long double>(exact)) / ulp);
+}
+
 std::string outcome_of(const MethodOutput& m, const Instance& inst) {
   if (inst.certified == Answer::undecided) return "uncertified";
   return std::string(to_string(judge(m, inst.certified)));
@@ -694,7 +703,7 @@ int run_study(StudyOptions o, std::ostream& out) {
       r.gap_lo = inst.gap_lo, r.gap_hi = inst.gap_hi, r.ns = ns;
       if (is_line_query(inst.query) && !res.intersecting && intersects(res.answer) && intersects(inst.certified) &&
           std::isfinite(res.t_in) && std::isfinite(inst.t_in))
-        r.t_error = static_cast<double>(std::llabs(ulp_distance(inst.t_in, res.t_in)));
+        r.t_error = t_error_ulps(res.t_in, inst.t_in);
       rows[pi].push_back(std::move(r));
     }
     progress.tick();
