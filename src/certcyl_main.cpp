@@ -9,6 +9,7 @@
 #include "demo.hpp"
 #include "query.hpp"
 #include "scene.hpp"
+#include "study.hpp"
 
 namespace {
 
@@ -73,6 +74,33 @@ int main(int argc, char** argv) {
   scene->add_option("--threads", scene_threads, "Worker threads for the narrow phase (default 1; 0 = all cores)");
   scene->add_flag("--progress", scene_progress, "Report progress on standard error (default: when it is a terminal)");
 
+  certcyl::cli::StudyOptions study_options;
+  std::string shard;
+  bool no_plots = false;
+  CLI::App* study = app.add_subcommand("study", "The robustness study: every method against the certified answers (the main job)");
+  study->footer(
+      "Runs the hard-case families of every query and uniform inputs through every method (the seeds as\n"
+      "written and corrected, the robust double method, the generic methods in double, long double,\n"
+      "intervals, Gmpfr and CORE::Expr, and the peer libraries found at build time), judges each answer\n"
+      "against the certified one, draws failure maps and hunts for each method's worst input. Writes\n"
+      "results/<name>/ (instances.csv, inputs.csv, summary.txt/csv, machine.json, failure_maps/, hunt.csv,\n"
+      "figures/) and prints the summary table. Sizes: tiny (seconds), small, default (minutes), large.");
+  study->add_option("--name", study_options.name, "Results folder name under --out (default: the size)");
+  study->add_option("--out", study_options.out_root, "Results root (default: results)");
+  study->add_option("--config", study_options.config_file, "JSON configuration (per_family, map_cells, map_step, hunt_evaluations, methods, families, size, seed, name)");
+  study->add_option("--size", study_options.size, "tiny, small, default, large, or instances per family and query");
+  study->add_option("--seed", study_options.seed, "Random seed (default 1)");
+  study->add_option("--threads", study_options.threads, "Worker threads (default 2; 0 = all cores)");
+  study->add_option("--shard", shard, "Run shard i of n (i/n, 0-based) into results/<name>/shard-i-of-n; then `certcyl merge`");
+  study->add_flag("--no-plots", no_plots, "Do not run the plotting script");
+  study->add_flag("--progress,!--no-progress", study_options.progress, "Progress bar on standard error (default on)");
+
+  std::string merge_dir;
+  bool merge_no_plots = false;
+  CLI::App* merge = app.add_subcommand("merge", "Merge the shards of a study into one results folder");
+  merge->add_option("DIR", merge_dir, "results/<name>, holding shard-*-of-* folders")->required();
+  merge->add_flag("--no-plots", merge_no_plots, "Do not run the plotting script");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -87,6 +115,19 @@ int main(int argc, char** argv) {
     if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
     std::ios::sync_with_stdio(false);
     return certcyl::cli::run_query(std::cin, std::cout, options, threads);
+  }
+  if (study->parsed() || merge->parsed()) {
+    try {
+      if (merge->parsed()) return certcyl::cli::run_merge(merge_dir, !merge_no_plots, std::cout);
+      if (!shard.empty()) certcyl::cli::parse_shard(shard, study_options.shard_index, study_options.shard_count);
+      if (study_options.threads == 0) study_options.threads = std::max(1u, std::thread::hardware_concurrency());
+      study_options.plots = !no_plots;
+      if (!isatty(2) && study->count("--progress") == 0) study_options.progress = false;
+      return certcyl::cli::run_study(study_options, std::cout);
+    } catch (const std::exception& e) {
+      std::cerr << "certcyl: " << e.what() << '\n';
+      return 1;
+    }
   }
   if (scene->parsed()) {
     if (scene_threads == 0) scene_threads = std::max(1u, std::thread::hardware_concurrency());

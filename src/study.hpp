@@ -1,0 +1,40 @@
+// The robustness study: `certcyl study` and `certcyl merge` (README, "Main job: the study").
+#pragma once
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace certcyl::cli {
+
+struct StudyOptions {
+  std::string name;                  // results/<name>; default: the size
+  std::string out_root = "results";
+  std::string size = "default";      // tiny | small | default | large | N (instances per family and query)
+  std::uint64_t seed = 1;
+  unsigned threads = 2;
+  std::string config_file;           // JSON; the command-line options override it
+  int shard_index = 0, shard_count = 1;
+  bool plots = true;
+  bool progress = true;
+  // Filled from the size and the configuration file.
+  long per_family = 0;
+  int map_cells = 0;                 // failure maps are map_cells x map_cells
+  long map_step = 1;                 // ulps between neighbouring cells
+  long hunt_evaluations = 0;         // per method
+  std::vector<std::string> methods;  // substrings of method names to keep (empty: all)
+  std::vector<std::string> families; // family names to keep (empty: all)
+};
+
+// Parses "i/n" (0 <= i < n); throws std::invalid_argument.
+void parse_shard(const std::string& s, int& index, int& count);
+
+// Runs the study; writes the results folder; returns the exit status.
+int run_study(StudyOptions options, std::ostream& out);
+
+// Merges the shards results/<name>/shard-*-of-*/ into results/<name>/ (the same outputs as an
+// unsharded run of the same configuration and seed).
+int run_merge(const std::string& dir, bool plots, std::ostream& out);
+
+}  // namespace certcyl::cli

@@ -1,0 +1,64 @@
+// The method registries of the study, one function per query group (study_methods_*.cpp) and
+// one per peer library (peers/*.cpp, compiled when the library is found).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "certcyl/dispatch.hpp"
+#include "certcyl/study/methods.hpp"
+
+namespace certcyl::cli {
+
+// The number types every generic method runs in, with the stride of the slow ones.
+struct NumberTypeChoice {
+  NumberTypeSpec spec;
+  unsigned stride = 1;
+  bool cheap = true;
+};
+
+inline std::vector<NumberTypeChoice> generic_number_types() {
+  return {{{NumberKind::double_, 53}, 1, true},     {{NumberKind::long_double, 64}, 1, true},
+          {{NumberKind::interval, 53}, 1, true},    {{NumberKind::gmpfr, 24}, 2, true},
+          {{NumberKind::gmpfr, 53}, 2, false},      {{NumberKind::gmpfr, 113}, 2, false},
+          {{NumberKind::gmpfr, 256}, 2, false},     {{NumberKind::core_expr, 53}, 8, false}};
+}
+
+// A binary64 input in NT: itself for double and long double, correctly rounded to the
+// precision in force for Gmpfr, enclosed for intervals, exact for CORE::Expr.
+template <class NT>
+NT from_binary64(double d) {
+  if constexpr (std::is_same_v<NT, double> || std::is_same_v<NT, long double>)
+    return d;
+  else
+    return nt::from_rational<NT>(Rational(d));
+}
+
+template <class NT, class Prim>
+auto to_nt(const Prim& p) {
+  return p.map([](double d) { return from_binary64<NT>(d); });
+}
+
+// Marks the methods that must not run concurrently (CORE::Expr).
+inline void mark_serial(study::Registry& r) {
+  for (study::Method& m : r)
+    if (m.nt == "core_expr") m.serial = true;
+}
+
+void register_line_methods(study::Registry& r);
+void register_triangle_methods(study::Registry& r);
+void register_cylinder_methods(study::Registry& r);
+// Every peer library found at configure time; returns their names and versions.
+std::vector<std::string> register_peer_methods(study::Registry& r);
+
+inline study::Registry all_methods_registry() {
+  study::Registry r;
+  register_line_methods(r);
+  register_triangle_methods(r);
+  register_cylinder_methods(r);
+  register_peer_methods(r);
+  mark_serial(r);
+  return r;
+}
+
+}  // namespace certcyl::cli
