@@ -2,7 +2,7 @@
 # The test suite: install what is needed, build everything warning-clean, run ctest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh
+bash scripts/install-deps.sh --study
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCERTCYL_WERROR=ON
 cmake --build build -j"$(nproc)"
 cd build
