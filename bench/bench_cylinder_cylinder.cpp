@@ -1,8 +1,11 @@
 // Cylinder against cylinder, side by side on the same random pairs: the certified query (exact
-// rational input, and binary64 input taken exactly, with the default options and with the
-// lean ones), Eberly's separating-axis test in double (corrected variant, not certified), and
+// rational input, and binary64 input taken exactly, with several options), Eberly's separating-axis test in double (corrected variant, not certified), and
 // FCL's fcl::collide on two fcl::Cylinderd with its default GJK solver (libccd), when FCL is
 // installed.
+//
+// Options: the defaults (certificate as binary64 vectors, cheap gap enclosure, no stage clock),
+// without the gap enclosure, with the ranked candidates' tighter enclosure (refine_gap, as the
+// command runs it), and with everything on (refine_gap, Rational certificate fields, stage clock).
 //
 // Pairs: midpoints uniform in [-1, 1]^3, axis directions uniform, lengths in [0.2, 2], radii in
 // [0.05, 0.5] (binary64 values); split by the certified answer into separated and overlapping
@@ -121,23 +124,19 @@ void BM_certified_double_no_gap(benchmark::State& state) {
   run(state, [o](const Pair& p) { return certcyl::certified_cylinder_cylinder(p.a, p.b, o).answer; });
 }
 
-// No stage clock, certificates given as exact binary64 vectors (no Gmpq allocation); the
-// answer is as certified as with the defaults.
-certcyl::CylinderCylinderOptions lean_options(bool gap) {
+// The ranked fast path's tighter gap enclosure (what the command reports).
+void BM_certified_double_refined_gap(benchmark::State& state) {
   certcyl::CylinderCylinderOptions o;
-  o.time_stages = false;
-  o.rational_certificates = false;
-  o.gap_enclosure = gap;
-  return o;
-}
-
-void BM_certified_double_lean(benchmark::State& state) {
-  const certcyl::CylinderCylinderOptions o = lean_options(true);
+  o.refine_gap = true;
   run(state, [o](const Pair& p) { return certcyl::certified_cylinder_cylinder(p.a, p.b, o).answer; });
 }
 
-void BM_certified_double_lean_no_gap(benchmark::State& state) {
-  const certcyl::CylinderCylinderOptions o = lean_options(false);
+// Everything on: ranked candidates, Rational certificate fields filled, stage clock.
+void BM_certified_double_everything(benchmark::State& state) {
+  certcyl::CylinderCylinderOptions o;
+  o.refine_gap = true;
+  o.rational_certificates = true;
+  o.time_stages = true;
   run(state, [o](const Pair& p) { return certcyl::certified_cylinder_cylinder(p.a, p.b, o).answer; });
 }
 
@@ -229,8 +228,10 @@ void BM_certified_stages(benchmark::State& state) {
   std::array<double, certcyl::kCylinderStages> seconds{};
   double runs = 0, any_exact = 0;
   for (auto _ : state) {
+    certcyl::CylinderCylinderOptions o;
+    o.time_stages = true;
     for (const Pair& p : ps) {
-      const auto r = certcyl::certified_cylinder_cylinder(p.a, p.b);
+      const auto r = certcyl::certified_cylinder_cylinder(p.a, p.b, o);
       decided[static_cast<std::size_t>(r.stage)] += 1;
       by[static_cast<std::size_t>(r.certified_by)] += 1;
       if (r.counters.exact_checks > 0 || r.gmpfr_precision > 0) any_exact += 1;
@@ -254,8 +255,8 @@ BENCHMARK(BM_certified_stages)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_certified_rational)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_double)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_double_no_gap)->Arg(0)->Arg(1);
-BENCHMARK(BM_certified_double_lean)->Arg(0)->Arg(1);
-BENCHMARK(BM_certified_double_lean_no_gap)->Arg(0)->Arg(1);
+BENCHMARK(BM_certified_double_refined_gap)->Arg(0)->Arg(1);
+BENCHMARK(BM_certified_double_everything)->Arg(0)->Arg(1);
 
 }  // namespace
 

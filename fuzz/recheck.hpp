@@ -466,23 +466,26 @@ inline std::string check_feature(const CylinderFrame& f, const V& X, CylinderFea
 }
 
 inline std::string check_cylinder_pair(const Cylinder<Q>& a, const Cylinder<Q>& b, const CylinderCylinderResult& r) {
+  // The certificates as exact rationals, whichever field holds them.
+  const std::optional<Vec3<Q>> direction = r.exact_direction();
+  const std::optional<Point3<Q>> witness = r.exact_witness();
   const CylinderFrame fa(a), fb(b);
   switch (r.answer) {
     case Answer::separated:
-      if (!r.direction) return "separated without a direction";
-      if (separation_margin(a, b, *r.direction) != CGAL::POSITIVE) return "direction does not separate";
+      if (!direction) return "separated without a direction";
+      if (separation_margin(a, b, *direction) != CGAL::POSITIVE) return "direction does not separate";
       return "";
     case Answer::overlapping:
-      if (!r.witness) return "overlapping without a witness";
-      if (fa.where(*r.witness) != Where::interior || fb.where(*r.witness) != Where::interior) return "witness not interior to both";
+      if (!witness) return "overlapping without a witness";
+      if (fa.where(*witness) != Where::interior || fb.where(*witness) != Where::interior) return "witness not interior to both";
       return "";
     case Answer::touching: {
-      if (!r.direction || !r.witness || !r.contact) return "touching without a normal, a point or features";
-      if (is_zero(*r.direction)) return "zero contact normal";
-      if (separation_margin(a, b, *r.direction) != CGAL::ZERO) return "contact normal does not give phi(D) = D.Delta";
-      const V& X = *r.witness;
+      if (!direction || !witness || !r.contact) return "touching without a normal, a point or features";
+      if (is_zero(*direction)) return "zero contact normal";
+      if (separation_margin(a, b, *direction) != CGAL::ZERO) return "contact normal does not give phi(D) = D.Delta";
+      const V& X = *witness;
       if (fa.where(X) != Where::boundary || fb.where(X) != Where::boundary) return "contact point not on both boundaries";
-      if (!is_zero(V(r.contact->point - X)) || !is_zero(V(r.contact->normal - *r.direction))) return "contact differs from the certificate";
+      if (!is_zero(V(r.contact->point - X)) || !is_zero(V(r.contact->normal - *direction))) return "contact differs from the certificate";
       if (auto e = check_feature(fa, X, r.contact->feature0); !e.empty()) return "a: " + e;
       if (auto e = check_feature(fb, X, r.contact->feature1); !e.empty()) return "b: " + e;
       return "";

@@ -10,15 +10,22 @@
 
 namespace certcyl::cli {
 
+// The command reports the tighter gap enclosure of the ranked fast path.
+CylinderCylinderOptions command_options() {
+  CylinderCylinderOptions o;
+  o.refine_gap = true;
+  return o;
+}
+
 ojson cylinder_cylinder_json(const CylinderCylinderResult& r) {
   ojson out = answer_json(r.answer, r.answer != Answer::undecided, "certified", std::string(to_string(r.certified_by)));
   out["stage"] = std::string(to_string(r.stage));
   // log(phi*): negative when separated, 0 when touching, positive when overlapping; null when
   // the midpoints coincide (phi* is undefined: overlapping at every scale).
-  out["gap"] = r.gap_known ? ojson::array({r.log_gap_lower, r.log_gap_upper}) : ojson(nullptr);
+  out["gap"] = r.gap_known ? ojson::array({r.log_gap_lower(), r.log_gap_upper()}) : ojson(nullptr);
   ojson cert;
-  if (r.direction) cert["direction"] = exact_json(*r.direction);
-  if (r.witness) cert["witness"] = exact_json(*r.witness);
+  if (const auto d = r.exact_direction()) cert["direction"] = exact_json(*d);
+  if (const auto x = r.exact_witness()) cert["witness"] = exact_json(*x);
   if (r.contact) {
     cert["contact"] = ojson{{"type", r.contact->type()},
                             {"features", ojson::array({std::string(to_string(r.contact->feature0)),
@@ -75,7 +82,7 @@ ojson answer_cylinders(const json& in, const QueryOptions& o) {
   JsonReader reader;
   const Cylinder<Rational> a = reader.cylinder(JsonReader::member(in, "", "a"), "a");
   const Cylinder<Rational> b = reader.cylinder(JsonReader::member(in, "", "b"), "b");
-  if (o.method == "certified") return cylinder_cylinder_json(certified_cylinder_cylinder(a, b));
+  if (o.method == "certified") return cylinder_cylinder_json(certified_cylinder_cylinder(a, b, command_options()));
   const EberlyVariant variant = o.method == "eberly_as_written" ? EberlyVariant::as_written : EberlyVariant::corrected;
   const EberlyParameters params = eberly_parameters(in, variant);
   ojson details;

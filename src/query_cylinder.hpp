@@ -6,6 +6,8 @@
 
 namespace certcyl::cli {
 
+// The options of the certified cylinder-cylinder query in the command (refine_gap on).
+CylinderCylinderOptions command_options();
 ojson cylinder_cylinder_json(const CylinderCylinderResult& r);
 
 }  // namespace certcyl::cli

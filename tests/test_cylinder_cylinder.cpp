@@ -46,7 +46,7 @@ BOOST_AUTO_TEST_CASE(simple_separated_and_overlapping) {
   // phi* = (r0 + r1) / 3 = 2/3 exactly: the enclosure must contain it.
   BOOST_TEST(sep.gap_known);
   BOOST_TEST((sep.phi_lower <= 2.0 / 3 + 1e-16 && 2.0 / 3 - 1e-16 <= sep.phi_upper));
-  BOOST_TEST((sep.log_gap_lower <= std::log(2.0 / 3) + 1e-15 && std::log(2.0 / 3) - 1e-15 <= sep.log_gap_upper));
+  BOOST_TEST((sep.log_gap_lower() <= std::log(2.0 / 3) + 1e-15 && std::log(2.0 / 3) - 1e-15 <= sep.log_gap_upper()));
   const auto ovl = query(a, cyl({1, 0, 0}, {1, 0, 1}, 1));
   BOOST_TEST(to_string(ovl.answer) == "overlapping");
   // phi* = (r0 + r1) / 1 = 2.
@@ -216,12 +216,13 @@ BOOST_AUTO_TEST_CASE(binary64_outside_the_filter_guards) {
   BOOST_TEST(certificate_error(exact_of(c), exact_of(d), r) == "");
 }
 
-// Options that change the cost, not the answer: without Rational certificates the binary64
-// ones are given (and are the same exact numbers); without the clock the stage times are zero.
+// Options that change the cost, not the answer: without Rational certificates (the default) the
+// binary64 ones are given (and are the same exact numbers); without the clock (the default) the
+// stage times are zero; with rational_certificates the Rational fields hold the same numbers.
 BOOST_AUTO_TEST_CASE(lean_options_same_answers) {
   certcyl::CylinderCylinderOptions lean;
-  lean.rational_certificates = false;
-  lean.time_stages = false;
+  BOOST_TEST(!lean.rational_certificates);
+  BOOST_TEST(!lean.time_stages);
   const certcyl::Cylinder<double> a{{0, 0, 0}, {0, 0, 1}, 1}, sep{{3, 0, 0}, {3, 0, 1}, 1}, ovl{{1, 0, 0}, {1, 0, 1}, 1};
   const auto r = certified_cylinder_cylinder(a, sep, lean);
   BOOST_TEST(to_string(r.answer) == "separated");
@@ -238,7 +239,12 @@ BOOST_AUTO_TEST_CASE(lean_options_same_answers) {
   BOOST_TEST(to_string(o.answer) == "overlapping");
   BOOST_TEST(!o.witness.has_value());
   BOOST_TEST(o.witness_binary64.has_value());
-  const auto d = certified_cylinder_cylinder(a, ovl);
+  certcyl::CylinderCylinderOptions full;
+  full.rational_certificates = true;
+  full.time_stages = true;
+  full.refine_gap = true;
+  const auto d = certified_cylinder_cylinder(a, ovl, full);
+  BOOST_TEST(to_string(d.answer) == "overlapping");
   BOOST_TEST(d.witness.has_value());
   BOOST_TEST((*d.witness == *o.exact_witness()));
 }

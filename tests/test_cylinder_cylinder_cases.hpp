@@ -140,22 +140,25 @@ inline int separation_sign_core(const Cylinder<Q>& a0, const Cylinder<Q>& b0, co
 
 // Checks the certificate of r exactly and independently; returns "" or what is wrong.
 inline std::string certificate_error(const Cylinder<Q>& a, const Cylinder<Q>& b, const certcyl::CylinderCylinderResult& r) {
+  // The certificates as exact rationals, whichever field holds them.
+  const auto direction = r.exact_direction();
+  const auto witness = r.exact_witness();
   using certcyl::Answer;
   switch (r.answer) {
     case Answer::separated:
-      if (!r.direction) return "separated without a direction";
-      if (separation_sign_core(a, b, *r.direction) <= 0) return "direction does not separate";
+      if (!direction) return "separated without a direction";
+      if (separation_sign_core(a, b, *direction) <= 0) return "direction does not separate";
       if (r.gap_known && !(r.phi_lower < 1)) return "separated but phi_lower >= 1";
       return "";
     case Answer::overlapping:
-      if (!r.witness) return "overlapping without a witness";
-      if (position(*r.witness, a) != 1 || position(*r.witness, b) != 1) return "witness not interior to both";
+      if (!witness) return "overlapping without a witness";
+      if (position(*witness, a) != 1 || position(*witness, b) != 1) return "witness not interior to both";
       if (r.gap_known && !(r.phi_upper > 1)) return "overlapping but phi_upper <= 1";
       return "";
     case Answer::touching:
-      if (!r.direction || !r.witness || !r.contact) return "touching without a contact";
-      if (separation_sign_core(a, b, *r.direction) != 0) return "contact normal does not support both";
-      if (position(*r.witness, a) < 0 || position(*r.witness, b) < 0) return "contact point not in both";
+      if (!direction || !witness || !r.contact) return "touching without a contact";
+      if (separation_sign_core(a, b, *direction) != 0) return "contact normal does not support both";
+      if (position(*witness, a) < 0 || position(*witness, b) < 0) return "contact point not in both";
       return "";
     case Answer::undecided:
       if (!r.gap_known || !(r.phi_lower <= 1 && 1 <= r.phi_upper)) return "undecided without a bound containing 1";

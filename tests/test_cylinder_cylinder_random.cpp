@@ -376,3 +376,149 @@ BOOST_AUTO_TEST_CASE(random_pairs_stage_rates) {
   BOOST_TEST(by[0] > 0.99 * N);
   BOOST_TEST(by[3] == 0);
 }
+
+// ---- the quick filters (detail/cylinder_quick_filter.hpp) against Gmpq -------------------------
+namespace {
+
+// A pair multiplied by 2^k (exact for the magnitudes used here).
+Pair scaled(const Pair& p, int k) {
+  const auto sc = [k](double x) { return std::ldexp(x, k); };
+  return {p.a.map(sc), p.b.map(sc)};
+}
+
+// The quick path's frame: w = 2^j with (sum of the magnitudes) / w in [1, 2).
+double quick_frame(const Pair& p) {
+  double m = 0;
+  for (const Cylinder<double>* c : {&p.a, &p.b})
+    for (double x : {c->p0.x, c->p0.y, c->p0.z, c->p1.x, c->p1.y, c->p1.z, c->radius}) m += std::abs(x);
+  return 1 / cd::power_of_two_normaliser(m);
+}
+
+struct QuickTally {
+  int separated = 0, not_separated = 0, inside = 0, not_inside = 0, lower_bounds = 0;
+};
+
+// quick_separation: when it says separated, D separates exactly; its phi bound is an upper bound
+// of phi2(D) / |D.T| exactly; its lower bound L satisfies L <= 1 / sigma(X_t) exactly at the point
+// X_t = m0 + t (m1 - m0), t = s1 / (s0 + s1) from independent double estimates of the scales at
+// the midpoints (which makes 1 / sigma(X_t) = 1/s0 + 1/s1 up to rounding in t).
+void check_quick_direction(const Pair& p, QuickTally& t) {
+  const double w = quick_frame(p);
+  const cd::CylinderPair<Q> q = cd::CylinderPair<Q>::make(exact(p.a), exact(p.b));
+  cd::QuickSeparation s;
+  const bool separated = cd::quick_separation(p.a, p.b, w, true, s);
+  cd::QuickSeparation s2;
+  BOOST_TEST(cd::quick_separation(p.a, p.b, w, false, s2) == separated);  // the bounds change nothing
+  const Vec3<Q> D = exact(s.direction);
+  if (separated) {
+    ++t.separated;
+    BOOST_TEST(cd::separation_sign(q, D) == CGAL::POSITIVE);
+  } else {
+    ++t.not_separated;
+  }
+  if (std::isfinite(s.phi_upper) && !(D.x == 0 && D.y == 0 && D.z == 0)) {
+    const cd::SeparationTerms<Q> x = cd::separation_terms(q, D);
+    const Q dT = dot(D, q.T) < 0 ? Q(-dot(D, q.T)) : dot(D, q.T);
+    BOOST_TEST(cd::sign_c_minus_roots(Q(x.c + (Q(s.phi_upper) - 1) * dT), x.p, x.q) != CGAL::NEGATIVE);
+  }
+  const double L = s.phi_lower;
+  BOOST_TEST(L >= 0);
+  if (L > 0) {
+    ++t.lower_bounds;
+    const D3 m0 = 0.5 * (p.a.p0 + p.a.p1), m1 = 0.5 * (p.b.p0 + p.b.p1);
+    const double s0 = sigma(Pair{p.a, p.a}, m1), s1 = sigma(Pair{p.b, p.b}, m0);
+    const Q tq(s1 / (s0 + s1));
+    const Point3<Q> X = (exact(m0) + tq * (exact(m1) - exact(m0)));
+    const Q Lq(L);
+    for (const Cylinder<Q>* c : {&q.c0, &q.c1}) {
+      const Vec3<Q> A = c->p1 - c->p0, v = X - c->p0;
+      const Q AA = dot(A, A), two_s = 2 * dot(v, A) - AA;
+      // sigma(X) <= 1 / L:  L |2s - AA| <= AA  and  L^2 |v x A|^2 <= r^2 AA.
+      BOOST_TEST(Lq * (two_s < 0 ? Q(-two_s) : two_s) <= AA);
+      const Vec3<Q> cr = cross(v, A);
+      BOOST_TEST(Lq * Lq * dot(cr, cr) <= c->radius * c->radius * AA);
+    }
+  }
+}
+
+// quick_point: an "inside" answer is right exactly; the sigma bound is an upper bound exactly.
+void check_quick_point(const Pair& p, const D3& X, QuickTally& t) {
+  const double w = quick_frame(p);
+  const cd::CylinderPair<Q> q = cd::CylinderPair<Q>::make(exact(p.a), exact(p.b));
+  const cd::QuickPoint r = cd::quick_point(p.a, p.b, w, X);
+  const Point3<Q> E = exact(X);
+  if (r.inside) {
+    ++t.inside;
+    BOOST_TEST(cd::strictly_inside_both(q, E));
+  } else {
+    ++t.not_inside;
+  }
+  if (std::isfinite(r.sigma_upper)) {
+    const Q S(r.sigma_upper);
+    for (const Cylinder<Q>* c : {&q.c0, &q.c1}) {
+      const Vec3<Q> A = c->p1 - c->p0, v = E - c->p0;
+      const Q AA = dot(A, A), two_s = 2 * dot(v, A) - AA;
+      BOOST_TEST(S * AA >= (two_s < 0 ? Q(-two_s) : two_s));
+      const Vec3<Q> x = cross(v, A);
+      BOOST_TEST(S * S * c->radius * c->radius * AA >= dot(x, x));
+    }
+  }
+}
+
+}  // namespace
+
+// Random pairs at scales 2^-90 ... 2^90, and pairs moved so that Delta is within 2^-10 ... a few
+// ulps of separating or not (b translated along Delta until |T.T| = phi2(T)(1 +- 2^-j), rounded);
+// points near the closest points of the axes and on the surfaces. The quick filters may decline,
+// never be wrong.
+BOOST_AUTO_TEST_CASE(quick_filters_never_contradict_gmpq) {
+  BOOST_TEST_MESSAGE("seed " << kSeed + 4);
+  std::mt19937_64 g(kSeed + 4);
+  std::uniform_real_distribution<double> u(-1, 1), unit(0, 1);
+  QuickTally clear, near, points, near_points;
+  for (int i = 0; i < 1500; ++i) {
+    const int k = std::array<int, 5>{-90, -40, 0, 40, 90}[i % 5];
+    const Pair p = scaled(Pair{random_cylinder(g), random_cylinder(g)}, k);
+    check_quick_direction(p, clear);
+    // Near-degenerate: T' = T + 2 t T (b moved along T) with |T'|^2 = phi2(T')(1 + delta); phi2 is
+    // linear in the direction, so solve (1 + 2t)^2 |T|^2 = (1 + 2t) phi2(T)(1 + delta).
+    {
+      const D3 T = (p.b.p0 + p.b.p1) - (p.a.p0 + p.a.p1);
+      const double TT = dot(T, T);
+      if (TT > 0) {
+        const double phi2 = ratio(p, T) * TT;  // phi2(T) = ratio * |T.T|
+        const double delta = (unit(g) < 0.5 ? -1 : 1) * std::ldexp(1.0, -static_cast<int>(10 + 46 * unit(g)));
+        const double f = phi2 * (1 + delta) / TT;  // 1 + 2t
+        const double t = (f - 1) / 2;
+        const Pair m{p.a, {p.b.p0 + t * T, p.b.p1 + t * T, p.b.radius}};
+        check_quick_direction(m, near);
+      }
+    }
+    // Points: the inset closest points' division point and midpoint, random points, points on
+    // a's wall and cap, b's endpoint (on its cap: never strictly inside).
+    const D3 A0 = p.a.p1 - p.a.p0, A1 = p.b.p1 - p.b.p0;
+    const auto [c0, c1] = cd::closest_segment_points(p.a.p0, A0, p.b.p0, A1, 0.1, 0.1);
+    const double scale = std::ldexp(1.0, k);
+    for (const D3& X : {c0 + (p.a.radius / (p.a.radius + p.b.radius)) * (c1 - c0), 0.5 * (c0 + c1),
+                        D3{scale * u(g), scale * u(g), scale * u(g)}})
+      check_quick_point(p, X, points);
+    D3 e = cross(A0, D3{u(g), u(g), u(g)});
+    const double el = std::sqrt(dot(e, e));
+    if (el > 0) {
+      e = (p.a.radius / el) * e;
+      for (const D3& X : {p.a.p0 + unit(g) * A0 + e, p.a.p1 + e, p.a.p0 + unit(g) * e, p.b.p1})
+        check_quick_point(p, X, near_points);
+    }
+  }
+  BOOST_TEST_MESSAGE("clear: separated " << clear.separated << ", not " << clear.not_separated << ", lower bounds "
+                                         << clear.lower_bounds << "; near: separated " << near.separated << ", not "
+                                         << near.not_separated);
+  BOOST_TEST_MESSAGE("points: inside " << points.inside << ", not " << points.not_inside << "; near: inside "
+                                       << near_points.inside << ", not " << near_points.not_inside);
+  // The sets exercise both outcomes (the filters are not vacuous).
+  BOOST_TEST(clear.separated > 500);
+  BOOST_TEST(near.separated > 100);
+  BOOST_TEST(near.not_separated > 100);
+  BOOST_TEST(points.inside > 100);
+  BOOST_TEST(clear.lower_bounds > 1000);
+}

@@ -25,13 +25,20 @@
 //
 // Stages, in order; the first that proves an answer decides (result.stage):
 //   midpoints        Delta = 0: the common midpoint is interior to both.
-//   fast_path        cheap candidates, evaluated in double: directions Delta, its parts orthogonal
+//   fast_path        binary64 input first takes the quick path (detail/cylinder_quick_filter.hpp):
+//                    the direction Delta (as T = 2 Delta), then the r0:r1 point and the midpoint of the closest
+//                    points of the axes inset by half a radius from the caps, each checked by a
+//                    static filter whose error bounds are fixed in advance (no copy, no scaling,
+//                    no allocation); it decides about nine random pairs in ten in a few dozen
+//                    floating-point operations. Then cheap candidates, evaluated in double: directions Delta, its parts orthogonal
 //                    to each axis, A0 x A1, the difference of the closest points of the axis
 //                    segments, A0, A1; points: the closest points' r0:r1 division point and
 //                    midpoint, m0, m1, the closest point on axis 0; when none of them is interior
 //                    and no direction separates, up to 12 rounds of alternating projections onto
-//                    the two cylinders shrunk about their midpoints. The best direction, then the
-//                    best point, is checked (the first below 1 when the gap enclosure is off).
+//                    the two cylinders shrunk about their midpoints. By default Delta is tried
+//                    first by the static filter alone, then the points, then the directions, the
+//                    first promising one of each checked; with options.refine_gap all are ranked
+//                    and the best direction, then the best point, is checked.
 //   optimiser        smoothed Newton in double on the plane D.Delta = 1 (detail/cylinder_optimiser.hpp),
 //                    giving a direction and a dual point, checked likewise.
 //   touching_exact   rational candidate normals (A0, A1, A0 x A1, the parts of Delta orthogonal to
@@ -68,6 +75,7 @@
 #include "certcyl/answer.hpp"
 #include "certcyl/certified/detail/cylinder_certificates.hpp"
 #include "certcyl/certified/detail/cylinder_optimiser.hpp"
+#include "certcyl/certified/detail/cylinder_quick_filter.hpp"
 #include "certcyl/certified/detail/cylinder_static_filter.hpp"
 #include "certcyl/certified/detail/cylinder_touching.hpp"
 #include "certcyl/errors.hpp"
@@ -109,14 +117,21 @@ struct CylinderCylinderOptions {
   long max_precision = 1024;
   // Try the exact touching proofs (stages touching_exact and the reconstruction in gmpfr).
   bool prove_touching = true;
-  // Compute the certified enclosure of phi* (cheap: from the filter's values when it applies).
+  // Compute a certified enclosure of phi* from the candidates the deciding stage evaluates: on
+  // the fast path, the direction Delta and the segment between the midpoints (exact for two
+  // balls), or the witness point; its width varies with the pair. Costs little.
   bool gap_enclosure = true;
-  // Fill the Rational certificate fields (direction, witness). When off, a certificate that is
-  // a binary64 vector is given only in direction_binary64 / witness_binary64 (the same exact
-  // numbers, without the Gmpq allocations); other certificates are still given as Rational.
-  bool rational_certificates = true;
+  // Rank every cheap candidate of the fast path (seven directions, five points) and certify the
+  // best, for a tighter enclosure; about twice the cost of the fast path on ordinary pairs.
+  // Only with gap_enclosure.
+  bool refine_gap = false;
+  // Also fill the Rational certificate fields (direction, witness) when the certificate is a
+  // binary64 vector. Off: it is given only in direction_binary64 / witness_binary64 (the same
+  // exact numbers, without the Gmpq allocations); exact_direction() and exact_witness() give
+  // either as rationals. Certificates that are not binary64 vectors are always Rational.
+  bool rational_certificates = false;
   // Measure the time spent in each stage (stage_seconds): one clock reading per stage boundary.
-  bool time_stages = true;
+  bool time_stages = false;
 };
 
 struct CylinderCylinderCounters {
@@ -145,13 +160,20 @@ struct CylinderCylinderResult {
   // touching only: the features that meet, the normal and a common point.
   std::optional<CylinderContact> contact;
 
-  // Certified phi_lower <= phi* <= phi_upper and log_gap_lower <= log(phi*) <= log_gap_upper.
+  // Certified phi_lower <= phi* <= phi_upper and log_gap_lower() <= log(phi*) <= log_gap_upper().
   // gap_known is false when Delta = 0 (phi* is undefined: the cylinders overlap at every scale),
   // when options.gap_enclosure is off, or when no finite bound was found (input whose binary64
   // range exceeds what the scaled frame can hold exactly, so intervals overflow or underflow);
   // the four numbers are then meaningless.
   bool gap_known = false;
-  double phi_lower = 0, phi_upper = 0, log_gap_lower = 0, log_gap_upper = 0;
+  double phi_lower = 0, phi_upper = 0;
+  // The enclosure of log(phi*): std::log is within one ulp; two steps outward make it safe.
+  double log_gap_lower() const {
+    return phi_lower == 1 ? 0 : std::nextafter(std::nextafter(std::log(phi_lower), -HUGE_VAL), -HUGE_VAL);
+  }
+  double log_gap_upper() const {
+    return phi_upper == 1 ? 0 : std::nextafter(std::nextafter(std::log(phi_upper), HUGE_VAL), HUGE_VAL);
+  }
 
   long gmpfr_precision = 0;  // highest Gmpfr precision used, 0 if none
   CylinderCylinderCounters counters;
@@ -181,27 +203,27 @@ inline Rational to_rational(const CGAL::Gmpfr& x) {
   return q;
 }
 
-inline double round_down(double x) { return std::nextafter(x, -std::numeric_limits<double>::infinity()); }
-inline double round_up(double x) { return std::nextafter(x, std::numeric_limits<double>::infinity()); }
 
-// Closest points of the segments [a0, a0 + e0] and [a1, a1 + e1] (double; candidates only).
+// Closest points of the segments [a0, a0 + e0] and [a1, a1 + e1] (double; candidates only), or,
+// with insets i0, i1 in [0, 1/2], of the parts [a0 + i0 e0, a0 + (1 - i0) e0] and likewise.
 inline std::pair<Point3<double>, Point3<double>> closest_segment_points(const Point3<double>& a0, const Vec3<double>& e0,
-                                                                         const Point3<double>& a1, const Vec3<double>& e1) {
+                                                                         const Point3<double>& a1, const Vec3<double>& e1,
+                                                                         double i0 = 0, double i1 = 0) {
   const Vec3<double> w = a0 - a1;
   const double a = dot(e0, e0), b = dot(e0, e1), c = dot(e1, e1), d = dot(e0, w), e = dot(e1, w);
   const double den = a * c - b * b;
   double s;
   if (den > 1e-12 * a * c) {
-    s = std::clamp((b * e - c * d) / den, 0.0, 1.0);
+    s = std::clamp((b * e - c * d) / den, i0, 1 - i0);
   } else {
     // else: (nearly) parallel axes; the middle of the overlap of their parameter ranges on
     // segment 0 keeps the candidate away from the caps.
     double t0 = -d / a, t1 = (b - d) / a;
     if (t1 < t0) std::swap(t0, t1);
-    s = std::clamp(0.5 * (std::max(t0, 0.0) + std::min(t1, 1.0)), 0.0, 1.0);
+    s = std::clamp(0.5 * (std::max(t0, 0.0) + std::min(t1, 1.0)), i0, 1 - i0);
   }
-  const double t = std::clamp((b * s + e) / c, 0.0, 1.0);
-  s = std::clamp((b * t - d) / a, 0.0, 1.0);
+  const double t = std::clamp((b * s + e) / c, i1, 1 - i1);
+  s = std::clamp((b * t - d) / a, i0, 1 - i0);
   return {a0 + s * e0, a1 + t * e1};
 }
 
@@ -360,15 +382,11 @@ class CylinderCylinderSolver {
   CylinderCylinderResult finish() {
     if (result_.answer == Answer::touching) {
       result_.phi_lower = result_.phi_upper = 1;
-      result_.log_gap_lower = result_.log_gap_upper = 0;
       result_.gap_known = true;
     } else if (options_.gap_enclosure && !coincident_ && phi_upper_ && phi_lower_ > 0) {
       result_.gap_known = true;
       result_.phi_lower = phi_lower_;
       result_.phi_upper = *phi_upper_;
-      // std::log is within one ulp; two steps outward make the enclosure safe.
-      result_.log_gap_lower = round_down(round_down(std::log(phi_lower_)));
-      result_.log_gap_upper = round_up(round_up(std::log(*phi_upper_)));
     }
     return std::move(result_);
   }
@@ -578,69 +596,130 @@ class CylinderCylinderSolver {
     return std::max(one(dbl_.c0, dbl_.A0, dbl_.AA0), one(dbl_.c1, dbl_.A1, dbl_.AA1));
   }
 
-  // Cheap candidates, in the order in which they most often succeed on random pairs (the
-  // direction T alone separates about 9 separated pairs in 10). With the gap enclosure on, all
-  // are ranked by their double ratio / scale and the best is checked (the best direction also
-  // gives the tightest phi_upper); with it off, the first whose double ratio / scale is below 1
-  // is checked and the search stops there. Gap bounds are computed for the answer's candidates.
+  // Cheap candidates. Two orders:
+  //  - default: the direction T alone, by the static filter only (it separates about 9 separated
+  //    random pairs in 10); then the cheap points, in order, the first whose double scale is
+  //    below 1 checked; then the other cheap directions, the first whose double ratio is below 1
+  //    checked. Gap bounds: the T direction's and the segment between the midpoints
+  //    (static_segment_phi_lower), or the witness point's.
+  //  - refine_gap: every candidate ranked by its double ratio / scale, the best checked (the
+  //    best direction also gives the tightest phi_upper of the candidates).
+  // Then, when no point is interior although no direction separates, alternating projections.
   bool fast_path() {
     begin(CylinderStage::fast_path);
+    if (options_.refine_gap && options_.gap_enclosure) return fast_path_ranked();
     const CylinderPair<double>& d = dbl_;
-    const bool rank = options_.gap_enclosure;
     const double k0 = 4 * d.c0.radius * d.c0.radius / d.AA0, k1 = 4 * d.c1.radius * d.c1.radius / d.AA1;
-    // The closest points c0, c1 of the axis segments, computed when first needed.
-    std::optional<std::pair<Point3<double>, Point3<double>>> closest;
-    const auto closest_points = [&]() -> const std::pair<Point3<double>, Point3<double>>& {
-      if (!closest) closest = closest_segment_points(d.c0.p0, d.A0, d.c1.p0, d.A1);
-      return *closest;
-    };
-    Vec3<double> D = d.T;
-    double best_ratio = ratio_double(D, k0, k1);
-    if (rank || !(best_ratio < 1)) {
-      const auto& [c0, c1] = closest_points();
-      const std::array<Vec3<double>, 6> others{d.AA0 * d.T - dot(d.A0, d.T) * d.A0,
-                                               d.AA1 * d.T - dot(d.A1, d.T) * d.A1,
-                                               cross(d.A0, d.A1),
-                                               c1 - c0,
-                                               d.A0,
-                                               d.A1};
-      for (const Vec3<double>& E : others) {
-        const double r = ratio_double(E, k0, k1);
-        if (r < best_ratio) best_ratio = r, D = E;
-        if (!rank && best_ratio < 1) break;
+    std::optional<StaticDirection> t_terms;  // the static values of T, scaled (for phi_upper)
+    if (static_ok_) {
+      // T, certified by the static filter alone (when it cannot decide, T is tried again below
+      // with the other directions, gated by its double ratio).
+      const double s = power_of_two_normaliser(std::max({std::abs(d.T.x), std::abs(d.T.y), std::abs(d.T.z)}));
+      if (s != 0) {
+        const Vec3<double> D = s * d.T;
+        t_terms = static_direction(stat_, D);
+        ++result_.counters.directions_checked;
+        if (static_separation_sign(*t_terms) == StaticSign::positive) {
+          ++result_.counters.static_decisions;
+          last_check_ = CylinderArithmetic::static_filter;
+          if (options_.gap_enclosure) {
+            lower_phi_upper(static_ratio_upper(*t_terms));
+            const double lower = static_segment_phi_lower(stat_);
+            if (lower > phi_lower_) phi_lower_ = lower;
+          }
+          return separated_by(D);
+        }
       }
     }
-    if (best_ratio < 1) {
+    const auto bound_upper_by_t = [&] {
+      if (!options_.gap_enclosure) return;
+      if (t_terms) return lower_phi_upper(static_ratio_upper(*t_terms));
+      bound_by_direction(d.T);
+    };
+    const std::pair<Point3<double>, Point3<double>> closest = closest_segment_points(d.c0.p0, d.A0, d.c1.p0, d.A1);
+    const std::array<Point3<double>, 5> points = cheap_points(closest);
+    double best_scale = std::numeric_limits<double>::infinity();
+    Point3<double> X = points[0];
+    for (const Point3<double>& P : points) {
+      const double sc = scale_double(P);
+      if (sc < best_scale) best_scale = sc, X = P;
+      if (!(sc < 1)) continue;
+      std::optional<StaticPoint> values;
+      if (check_point(P, &values)) {
+        bound_by_point(P, values ? &*values : nullptr);
+        bound_upper_by_t();
+        return overlapping_at(P);
+      }
+    }
+    // else: no cheap point is proved interior; the cheap directions, T again among them.
+    const std::array<Vec3<double>, 7> directions{d.T,
+                                                 d.AA0 * d.T - dot(d.A0, d.T) * d.A0,
+                                                 d.AA1 * d.T - dot(d.A1, d.T) * d.A1,
+                                                 cross(d.A0, d.A1),
+                                                 closest.second - closest.first,
+                                                 d.A0,
+                                                 d.A1};
+    Vec3<double> best_D = d.T;
+    double best_ratio = std::numeric_limits<double>::infinity();
+    for (Vec3<double> D : directions) {
+      const double r = ratio_double(D, k0, k1);
+      if (r < best_ratio) best_ratio = r, best_D = D;
+      if (!(r < 1)) continue;
       std::optional<StaticDirection> terms;
       if (check_direction(D, &terms) == CGAL::POSITIVE) {
         if (options_.gap_enclosure) {
           bound_by_direction(D, terms ? &*terms : nullptr);
-          bound_by_point(cheap_points(closest_points())[0]);
+          if (static_ok_) {
+            const double lower = static_segment_phi_lower(stat_);
+            if (lower > phi_lower_) phi_lower_ = lower;
+          }
+          bound_by_point(X);
         }
         return separated_by(D);
       }
     }
+    return fast_path_projections(X, best_scale, best_D, best_ratio);
+  }
+
+  // The ranked order (refine_gap).
+  bool fast_path_ranked() {
+    const CylinderPair<double>& d = dbl_;
+    const double k0 = 4 * d.c0.radius * d.c0.radius / d.AA0, k1 = 4 * d.c1.radius * d.c1.radius / d.AA1;
+    const std::pair<Point3<double>, Point3<double>> closest = closest_segment_points(d.c0.p0, d.A0, d.c1.p0, d.A1);
+    const std::array<Vec3<double>, 7> directions{d.T,
+                                                 d.AA0 * d.T - dot(d.A0, d.T) * d.A0,
+                                                 d.AA1 * d.T - dot(d.A1, d.T) * d.A1,
+                                                 cross(d.A0, d.A1),
+                                                 closest.second - closest.first,
+                                                 d.A0,
+                                                 d.A1};
+    Vec3<double> D = d.T;
+    double best_ratio = std::numeric_limits<double>::infinity();
+    for (const Vec3<double>& E : directions) {
+      const double r = ratio_double(E, k0, k1);
+      if (r < best_ratio) best_ratio = r, D = E;
+    }
+    const std::array<Point3<double>, 5> points = cheap_points(closest);
+    if (best_ratio < 1) {
+      std::optional<StaticDirection> terms;
+      if (check_direction(D, &terms) == CGAL::POSITIVE) {
+        bound_by_direction(D, terms ? &*terms : nullptr);
+        if (static_ok_) {
+          const double lower = static_segment_phi_lower(stat_);
+          if (lower > phi_lower_) phi_lower_ = lower;
+        }
+        bound_by_point(points[0]);
+        return separated_by(D);
+      }
+    }
     // else: no cheap direction is proved to separate; look for an interior point.
-    const std::array<Point3<double>, 5> points = cheap_points(closest_points());
     std::size_t best_p = 0;
     double best_scale = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < points.size(); ++i) {
       const double s = scale_double(points[i]);
       if (s < best_scale) best_scale = s, best_p = i;
-      if (!rank && best_scale < 1) break;
     }
-    Point3<double> X = points[best_p];
-    if (!(best_scale < 1) && !(best_ratio < 1)) {
-      // else: no cheap point is interior although no cheap direction separates (typically a
-      // contact near a cap, where the cheap points sit on a cap plane). A few rounds of
-      // alternating projections onto both cylinders shrunk by 1 - 2^-6 about their midpoints
-      // move the best one inside when the overlap is not shallow.
-      for (int round = 0; round < 12 && !(best_scale < 1); ++round) {
-        const double shrink = round < 6 ? 1 - 0x1p-6 : 1 - 0x1p-10;
-        X = project_shrunk(d.c1, d.A1, d.AA1, shrink, project_shrunk(d.c0, d.A0, d.AA0, shrink, X));
-        best_scale = scale_double(X);
-      }
-    }
+    const Point3<double> X = points[best_p];
     if (best_scale < 1) {
       std::optional<StaticPoint> values;
       if (check_point(X, &values)) {
@@ -649,8 +728,36 @@ class CylinderCylinderSolver {
         return overlapping_at(X);
       }
     }
+    return fast_path_projections(X, best_scale, D, best_ratio);
+  }
+
+  // No cheap point is interior and no cheap direction separates (typically a contact near a
+  // cap, where the cheap points sit on a cap plane): a few rounds of alternating projections
+  // onto both cylinders shrunk by 1 - 2^-6 (then 1 - 2^-10) about their midpoints move X inside
+  // when the overlap is not shallow. Records the gap bounds of X and D either way.
+  bool fast_path_projections(Point3<double> X, double best_scale, const Vec3<double>& D, double best_ratio) {
+    const CylinderPair<double>& d = dbl_;
+    if (!(best_scale < 1) && !(best_ratio < 1)) {
+      for (int round = 0; round < 12 && !(best_scale < 1); ++round) {
+        const double shrink = round < 6 ? 1 - 0x1p-6 : 1 - 0x1p-10;
+        X = project_shrunk(d.c1, d.A1, d.AA1, shrink, project_shrunk(d.c0, d.A0, d.AA0, shrink, X));
+        best_scale = scale_double(X);
+      }
+      if (best_scale < 1) {
+        std::optional<StaticPoint> values;
+        if (check_point(X, &values)) {
+          bound_by_point(X, values ? &*values : nullptr);
+          bound_by_direction(D);
+          return overlapping_at(X);
+        }
+      }
+    }
     bound_by_direction(D);
     bound_by_point(X);
+    if (static_ok_ && options_.gap_enclosure) {
+      const double lower = static_segment_phi_lower(stat_);
+      if (lower > phi_lower_) phi_lower_ = lower;
+    }
     return pass();
   }
 
@@ -785,6 +892,85 @@ class CylinderCylinderSolver {
   bool started_ = false;
 };
 
+// The quick path's overlap: the r0:r1 division point of the closest points of the axis segments,
+// then their midpoint, proved strictly inside both by detail/cylinder_quick_filter.hpp; q holds
+// Delta's upper bound of phi*.
+inline bool quick_overlap(const Cylinder<double>& c0, const Cylinder<double>& c1, double w, const QuickSeparation& q,
+                          const CylinderCylinderOptions& options, std::chrono::steady_clock::time_point start,
+                          CylinderCylinderResult& r) {
+  // Closest points of the axes inset by half a radius from the caps: the division point then
+  // lies off the cap planes (it decides about four overlapping random pairs in five).
+  const Vec3<double> A0 = c0.p1 - c0.p0, A1 = c1.p1 - c1.p0;
+  const double i0 = std::min(0.5, 0.5 * c0.radius / std::sqrt(dot(A0, A0)));
+  const double i1 = std::min(0.5, 0.5 * c1.radius / std::sqrt(dot(A1, A1)));
+  const auto [a0, a1] = closest_segment_points(c0.p0, A0, c1.p0, A1, i0, i1);
+  Point3<double> X = a0 + (c0.radius / (c0.radius + c1.radius)) * (a1 - a0);
+  QuickPoint p = quick_point(c0, c1, w, X);
+  std::uint32_t points = 1;
+  if (!p.inside) {
+    X = 0.5 * (a0 + a1);
+    p = quick_point(c0, c1, w, X);
+    ++points;
+  }
+  if (!p.inside) return false;
+  r.answer = Answer::overlapping;
+  r.stage = CylinderStage::fast_path;
+  r.certified_by = CylinderArithmetic::static_filter;
+  r.witness_binary64 = X;
+  if (options.rational_certificates) r.witness = X.map([](double x) { return Rational(x); });
+  r.counters.directions_checked = 1;
+  r.counters.points_checked = points;
+  r.counters.static_decisions = 1;
+  if (options.gap_enclosure && std::isfinite(q.phi_upper) && p.sigma_upper > 0 && std::isfinite(p.sigma_upper)) {
+    // fl(rho' fl(1 / s)) <= rho' (1 + u)^2 / s <= 1 / s <= phi*.
+    r.gap_known = true;
+    r.phi_lower = kStaticRoundDown * (1 / p.sigma_upper);
+    r.phi_upper = q.phi_upper;
+  }
+  if (options.time_stages)
+    r.stage_seconds[static_cast<std::size_t>(CylinderStage::fast_path)] =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return true;
+}
+
+// The quick path: binary64 input, and the direction Delta proved to separate, or a cheap point
+// proved interior (quick_overlap), by the static filters of detail/cylinder_quick_filter.hpp. Returns false, leaving r untouched, when that does
+// not apply (invalid, non-finite or extreme input included: the caller validates afterwards) or
+// does not decide; the solver then runs from the start.
+inline bool quick_answer(const Cylinder<double>& c0, const Cylinder<double>& c1, const CylinderCylinderOptions& options,
+                         CylinderCylinderResult& r) {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = options.time_stages ? Clock::now() : Clock::time_point{};
+  // The frame (cylinder_quick_filter.hpp): w = 2^k with sum |x| / w in [1, 2); the sum is not
+  // finite when some number is not.
+  const auto magnitude = [](const Cylinder<double>& c) {
+    return ((std::abs(c.p0.x) + std::abs(c.p0.y)) + (std::abs(c.p0.z) + std::abs(c.p1.x))) +
+           ((std::abs(c.p1.y) + std::abs(c.p1.z)) + c.radius);
+  };
+  if (options.refine_gap && options.gap_enclosure) return false;  // the ranked fast path instead
+  if (!(c0.radius > 0 && c1.radius > 0)) return false;
+  const double normaliser = power_of_two_normaliser(magnitude(c0) + magnitude(c1));
+  if (!(normaliser >= 0x1p-100 && normaliser <= 0x1p100)) return false;
+  const double w = 1 / normaliser;
+  QuickSeparation q;
+  if (!quick_separation(c0, c1, w, options.gap_enclosure, q)) return quick_overlap(c0, c1, w, q, options, start, r);
+  r.answer = Answer::separated;
+  r.stage = CylinderStage::fast_path;
+  r.certified_by = CylinderArithmetic::static_filter;
+  r.direction_binary64 = q.direction;
+  if (options.rational_certificates) r.direction = q.direction.map([](double x) { return Rational(x); });
+  r.counters.directions_checked = 1;
+  r.counters.static_decisions = 1;
+  if (options.gap_enclosure && q.phi_lower > 0 && std::isfinite(q.phi_upper)) {
+    r.gap_known = true;
+    r.phi_lower = q.phi_lower;
+    r.phi_upper = q.phi_upper;
+  }
+  if (options.time_stages)
+    r.stage_seconds[static_cast<std::size_t>(CylinderStage::fast_path)] = std::chrono::duration<double>(Clock::now() - start).count();
+  return true;
+}
+
 }  // namespace detail
 
 // The certified test-intersection of two cylinders (header comment). Throws InvalidInput on an
@@ -798,7 +984,18 @@ inline CylinderCylinderResult certified_cylinder_cylinder(const Cylinder<Rationa
   };
   if (!fine(a)) validate(a, "a");
   if (!fine(b)) validate(b, "b");
-  return detail::CylinderCylinderSolver(a, b, options).run();
+  // Binary64 input (the common case) first tries the quick path.
+  bool binary64 = true;
+  const auto to_d = [&binary64](const Rational& q) {
+    double d = 0;
+    if (binary64 && !detail::exact_double(q, d)) binary64 = false;
+    return d;
+  };
+  const Cylinder<double> da = a.map(to_d), db = b.map(to_d);
+  CylinderCylinderResult r;
+  if (binary64 && detail::quick_answer(da, db, options, r)) return r;
+  r = detail::CylinderCylinderSolver(a, b, options).run();
+  return r;
 }
 
 // The same for binary64 input, each double taken as the exact rational it denotes (no rounding
@@ -811,9 +1008,12 @@ inline CylinderCylinderResult certified_cylinder_cylinder(const Cylinder<double>
     if (!(c.radius > 0)) throw InvalidInput(join_field(field, "radius"), "must be positive");
     if (c.p0 == c.p1) throw InvalidInput(field, "zero-length axis (p0 == p1)");
   };
+  CylinderCylinderResult r;
+  if (detail::quick_answer(a, b, options, r)) return r;  // valid input only
   check(a, "a");
   check(b, "b");
-  return detail::CylinderCylinderSolver(a, b, options).run();
+  r = detail::CylinderCylinderSolver(a, b, options).run();
+  return r;
 }
 
 }  // namespace certcyl

@@ -163,7 +163,14 @@ inline Answer answer_of_sign(const Rational& g) {
 
 // Computes inst.certified, the gap enclosure and (line queries) t_in. Sets certified_ok to
 // false when the gap's sign and the certified answer differ (a defect the study reports).
-inline void certify(Instance& inst, const CylinderCylinderOptions& cyl_options = {}) {
+// The cylinder pairs' gap enclosure comes from the ranked fast path (refine_gap).
+inline CylinderCylinderOptions refined_gap_options() {
+  CylinderCylinderOptions o;
+  o.refine_gap = true;
+  return o;
+}
+
+inline void certify(Instance& inst, const CylinderCylinderOptions& cyl_options = refined_gap_options()) {
   using namespace detail;
   const std::vector<double>& x = inst.x;
   auto finish_line = [&](const CertifiedLineResult& r, const Rational& gap) {
@@ -205,8 +212,8 @@ inline void certify(Instance& inst, const CylinderCylinderOptions& cyl_options =
       const CylinderCylinderResult r = certified_cylinder_cylinder(cylinder_at(x, 0), cylinder_at(x, 7), cyl_options);
       inst.certified = r.answer;
       if (r.gap_known) {
-        inst.gap_lo = r.log_gap_lower;
-        inst.gap_hi = r.log_gap_upper;
+        inst.gap_lo = r.log_gap_lower();
+        inst.gap_hi = r.log_gap_upper();
       } else {
         inst.gap_lo = inst.gap_hi = std::numeric_limits<double>::infinity();
       }

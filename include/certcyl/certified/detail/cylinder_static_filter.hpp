@@ -175,14 +175,23 @@ struct StaticPair {
 // ---- direction D: sign of |D.T| - phi2(D) and an upper bound of phi2(D) / |D.T| ---------------
 // The terms of separation_terms: c = |D.T| - |D.A0| - |D.A1|, p = 4 r0^2 |D x A0|^2 / A0.A0,
 // q likewise; kept apart so that the ratio bound reuses them. Degree: c 2, p and q 4 over 2.
+// |D x A|^2 is evaluated as (D.D)(A.A) - (D.A)^2 (Lagrange's identity, exact in the reals), which
+// reuses D.A and costs fewer operations than the cross product; its error bound follows the
+// same rules.
 struct StaticDirection {
   Bounded dT, dA0, dA1, p, q;
 };
 
+[[gnu::always_inline]] inline Bounded exact_dot(const Vec3<double>& a, const Vec3<double>& b) {
+  const Bounded x = exactly(a.x) * exactly(b.x), y = exactly(a.y) * exactly(b.y), z = exactly(a.z) * exactly(b.z);
+  return (x + y) + z;
+}
+
 inline StaticDirection static_direction(const StaticPair& s, const Vec3<double>& D) {
-  const Vec3<Bounded> x0 = cross(D, s.A0), x1 = cross(D, s.A1);
-  return {abs(dot(D, s.T)), abs(dot(D, s.A0)), abs(dot(D, s.A1)), divide_positive(times_power_of_two(s.rr0 * dot(x0, x0), 4), s.AA0),
-          divide_positive(times_power_of_two(s.rr1 * dot(x1, x1), 4), s.AA1)};
+  const Bounded DD = exact_dot(D, D), DA0 = dot(D, s.A0), DA1 = dot(D, s.A1);
+  const Bounded x0 = DD * s.AA0 - DA0 * DA0, x1 = DD * s.AA1 - DA1 * DA1;
+  return {abs(dot(D, s.T)), abs(DA0), abs(DA1), divide_positive(times_power_of_two(s.rr0 * x0, 4), s.AA0),
+          divide_positive(times_power_of_two(s.rr1 * x1, 4), s.AA1)};
 }
 
 // Sign of c - sqrt(p) - sqrt(q) (= separation_sign), or unknown.
@@ -281,6 +290,29 @@ inline double static_sigma_upper(const StaticPair& s, const StaticPoint& p) {
   one(p.side0, s.AA0, s.rr0);
   one(p.side1, s.AA1, s.rr1);
   return kStaticRoundUp * sigma;
+}
+
+// A certified lower bound of phi* from the segment between the midpoints, or 0. The point
+// X_t = m0 + t Delta has sigma_0(X_t) = t sigma_0(m1) and sigma_1(X_t) = (1 - t) sigma_1(m0),
+// so min over t of sigma(X_t) = s0 s1 / (s0 + s1) with s0 = sigma_0(m1), s1 = sigma_1(m0), and
+// phi* >= 1 / sigma(X_t) gives phi* >= 1/s0 + 1/s1 (equality for two balls). With w = m1 - m0
+// = T/2:  s0 = max(|T.A0| / A0.A0, sqrt(|T x A0|^2 / (4 r0^2 A0.A0))),
+// |T x A0|^2 = (T.T)(A0.A0) - (T.A0)^2; s1 likewise (|T.A1|, |T x A1|).
+// Upper bounds of s0, s1 as in static_sigma_upper: >= (1 - eps)^4.5 rho s_i >= s_i. Then
+// fl(rho' fl(fl(1/u0) + fl(1/u1))) <= rho' (1 + eps)^3 (1/u0 + 1/u1) <= 1/u0 + 1/u1.
+inline double static_segment_phi_lower(const StaticPair& s) {
+  const Bounded TT = dot(s.T, s.T);
+  const auto sigma_upper = [&TT, &s](const Vec3<Bounded>& A, const Bounded& AA, const Bounded& rr) {
+    const Bounded TA = dot(s.T, A);
+    const double axial = upper_of(abs(TA)) / lower_of(AA);
+    const double den = lower_of(times_power_of_two(rr * AA, 4));
+    const double radial = den > 0 ? std::sqrt(upper_of(TT * AA - TA * TA) / den) : std::numeric_limits<double>::infinity();
+    return kStaticRoundUp * std::max(axial, radial);
+  };
+  const double u0 = sigma_upper(s.A0, s.AA0, s.rr0), u1 = sigma_upper(s.A1, s.AA1, s.rr1);
+  if (!(u0 > 0 && u1 > 0)) return 0;  // T may vanish: no bound
+  const double lower = kStaticRoundDown * (1 / u0 + 1 / u1);
+  return std::isfinite(lower) ? lower : 0;
 }
 
 }  // namespace certcyl::detail
