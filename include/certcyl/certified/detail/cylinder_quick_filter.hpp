@@ -57,7 +57,7 @@
 // midpoint, s_k = max(|T*.A*_k| / alpha_k^2, |T* x A*_k| / (2 r_k alpha_k)):
 //   |DA_k - T*.A*_k| <= 384.01u + sum |T_i - T*_i| |A*_i| <= 384.01u + 192.01u < 2^-42 = 1024u;
 //   |T* x A*_k| <= |T x A*_k| + |T - T*| alpha_k <= |T x A*_k| + 27.72u alpha_k, and with
-//   Y_k = fl(x_k + 2^-39 AA_k) (2^-39 AA_k >= 4095.9u alpha_k^2 > 3648.8u alpha_k^2 + u (192.2 + 2^-38)
+//   Y_k = fl(x_k + 2^-39 AA_k) (2^-39 AA_k >= 8191.9u alpha_k^2 > 3648.8u alpha_k^2 + u (192.2 + 2^-38)
 //   alpha_k^2, covering the rounding of the sum) |T x A*_k|^2 <= Y_k, so
 //   |T* x A*_k|^2 <= (1 + 2^-20) |T x A*_k|^2 + (1 + 2^20)(27.72u)^2 alpha_k^2 <= Z_k
 //     = (1 + 2^-20) Y_k + 2^-73 AA_k  ((a + b)^2 <= (1 + eta) a^2 + (1 + 1/eta) b^2, eta = 2^-20;
@@ -138,7 +138,7 @@ inline bool quick_separation(const Cylinder<double>& c0, const Cylinder<double>&
 //     rr AA: 7.0004u * 192 = 1344.1u; ww AA: 540.04u * 48.01 + 108 * 240.02u + 5200u <= 57049u;
 //     s^2: 360.01u * 144.02 + 5185u <= 57034u; the two subtractions: 5186u + 5378u;
 //     in all <= 125991u < 2^-35 = 131072u.
-//   Degrees (input frame): s and AA - s 2, g 4. Underflows (2^-874 each, world) are far inside.
+//   Degrees (input frame): s and AA - s 2, g 4. Underflows (2^-974 each, world) are far inside.
 // sigma_k(X) = max(|2s* - AA*| / AA*, sqrt(|w* x A*|^2 / (r^2 AA*))) from above:
 //   |2s - AA| within 2 * 360.01u + 240.02u + u (144 + 48) <= 1152.04u < 2^-41;
 //   |w x A|^2 within 57049u + 57034u + 5186u <= 119269u, and fl(. + 2^-35) covers it and its
