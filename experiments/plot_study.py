@@ -1,18 +1,22 @@
 #!/usr/bin/python3
 """Figures of the robustness study, read from the CSV files of a results folder only.
 
-    /usr/bin/python3 experiments/plot_study.py results/<name>
+    /usr/bin/python3 experiments/plot_study.py results/<name> [--out DIR]
 
-Writes PNG and PDF into results/<name>/figures/:
+Writes PNG and PDF into results/<name>/figures/ (or DIR):
   disagreement_<query>   false positives + false negatives per method and family (heat map)
   gap_rate_<query>       disagreement rate against the certified signed gap, log-binned
   pareto                 median ns per query against disagreement rate, per query
   t_error                line queries: error of the entry parameter t in ulps, per method
   pareto_t_error         line queries: median ns against the 99th percentile of the t error
   map_<name>             failure maps: each method's answer on the ulp grid, disagreements marked
+  manifest.json          the SHA-256 of every file read (relative to the results folder) and of
+                         every figure written, so a consumer (the paper) can tell whether a figure
+                         comes from the study outputs it sits beside
 Needs matplotlib and numpy (Debian python3-matplotlib, python3-numpy).
 """
 import csv
+import hashlib
 import json
 import math
 import os
@@ -36,7 +40,20 @@ KIND_COLOURS = {
 }
 
 
+READ = []  # every input file read, for the manifest
+WRITTEN = []  # every figure written
+
+
+def sha256(path):
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
 def read_csv(path):
+    READ.append(path)
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
 
@@ -44,8 +61,23 @@ def read_csv(path):
 def save(fig, out, name):
     fig.tight_layout()
     for ext in ("png", "pdf"):
-        fig.savefig(os.path.join(out, f"{name}.{ext}"), dpi=110)
+        path = os.path.join(out, f"{name}.{ext}")
+        # A fixed creation date keeps the PDF a function of the data (matplotlib honours it).
+        meta = {"CreationDate": None} if ext == "pdf" else None
+        fig.savefig(path, dpi=110, metadata=meta)
+        WRITTEN.append(path)
     plt.close(fig)
+
+
+def write_manifest(folder, out):
+    manifest = {
+        "generator": "experiments/plot_study.py",
+        "inputs": {os.path.relpath(p, folder): sha256(p) for p in sorted(set(READ))},
+        "outputs": {os.path.relpath(p, out): sha256(p) for p in sorted(set(WRITTEN))},
+    }
+    with open(os.path.join(out, "manifest.json"), "w") as f:
+        json.dump(manifest, f, indent=1, sort_keys=True)
+        f.write("\n")
 
 
 def fnum(s):
@@ -231,6 +263,7 @@ def failure_maps(folder, out):
         meta = {}
         jpath = os.path.join(mapdir, name[:-4] + ".json")
         if os.path.exists(jpath):
+            READ.append(jpath)
             with open(jpath) as f:
                 meta = json.load(f)
         n = max(int(r["i"]) for r in rows) + 1
@@ -266,11 +299,16 @@ def failure_maps(folder, out):
 
 
 def main():
-    if len(sys.argv) != 2:
+    args = sys.argv[1:]
+    out = None
+    if len(args) == 3 and args[1] == "--out":
+        out = args[2]
+    elif len(args) != 1:
         print(__doc__)
         return 2
-    folder = sys.argv[1]
-    out = os.path.join(folder, "figures")
+    folder = args[0]
+    if out is None:
+        out = os.path.join(folder, "figures")
     os.makedirs(out, exist_ok=True)
     rows = read_csv(os.path.join(folder, "instances.csv"))
     summary = read_csv(os.path.join(folder, "summary.csv"))
@@ -280,6 +318,7 @@ def main():
     pareto(summary, out)
     t_error(rows, out)
     failure_maps(folder, out)
+    write_manifest(folder, out)
     print(f"figures written to {out}")
     return 0
 
