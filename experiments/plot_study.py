@@ -7,6 +7,10 @@ Writes PNG and PDF into results/<name>/figures/ (or DIR):
   disagreement_<query>   false positives + false negatives per method and family (heat map)
   gap_rate_<query>       disagreement rate against the certified signed gap, log-binned
   pareto                 median ns per query against disagreement rate, per query
+  pareto_compact         the same without sweeps and the extra MPFR precisions, colour by
+                         algorithm, marker by number type (legible at a page's width)
+  gap_rate_overview      disagreement rate against |gap| for the methods in hardware precision,
+                         line queries pooled, triangles, cylinder pairs
   t_error                line queries: error of the entry parameter t in ulps, per method
   pareto_t_error         line queries: median ns against the 99th percentile of the t error
   map_<name>             failure maps: each method's answer on the ulp grid, disagreements marked
@@ -197,6 +201,127 @@ def pareto(summary, out):
     save(fig, out, "pareto")
 
 
+ALGO_COLOURS = {
+    "certified": "black", "robust": "tab:green", "shene": "tab:blue", "gullotti": "tab:cyan",
+    "gullotti_as_written": "tab:red", "eberly_triangle": "tab:purple", "eberly_cylinders": "tab:blue",
+    "eberly_cylinders_as_written": "tab:red", "fcl": "tab:brown", "fcl_mesh": "tab:brown",
+    "bullet": "tab:olive", "bullet_margin0": "goldenrod", "ode": "tab:pink", "ode_mesh": "tab:pink",
+}
+NT_MARKERS = {"exact": "X", "double": "o", "long_double": "s", "interval": "^", "gmpfr<113>": "D",
+              "core_expr": "*", "float": "P"}
+QUERY_TITLES = {"line_cylinder": "line", "ray_cylinder": "ray", "segment_cylinder": "segment",
+                "line_elliptic_cylinder": "line, elliptic cylinder", "triangle_cylinder": "triangle",
+                "cylinder_cylinder": "cylinder pair"}
+
+
+def pareto_compact(summary, out):
+    queries = [q for q in QUERY_TITLES if any(r["query"] == q for r in summary)]
+    if not queries:
+        return
+    cols = 3
+    rows_n = math.ceil(len(queries) / cols)
+    fig, axes = plt.subplots(rows_n, cols, figsize=(7.6, 2.5 * rows_n + 0.9), squeeze=False)
+    floor = 1e-4
+    used_algos, used_nts = set(), set()
+    for ax, q in zip(axes.flat, queries):
+        pts = []
+        for r in summary:
+            base, _, nt = r["method"].partition("/")
+            if r["query"] != q or r["kind"] == "sweep" or nt not in NT_MARKERS or base not in ALGO_COLOURS:
+                continue
+            ns, rate = fnum(r["median_ns"]), fnum(r["disagreement_rate"])
+            if ns > 0:
+                pts.append((ns, rate, base, nt))
+        for ns, rate, base, nt in pts:
+            hollow = base in ("bullet_margin0", "fcl_mesh", "ode_mesh")
+            c = ALGO_COLOURS[base]
+            ax.scatter(ns, max(rate, floor), marker=NT_MARKERS[nt], s=26, linewidths=0.9,
+                       facecolors="none" if hollow else c, edgecolors=c)
+            used_algos.add(base)
+            used_nts.add(nt)
+        front = sorted(p for p in pts if not any(o[0] < p[0] and o[1] <= p[1] for o in pts if o is not p))
+        if front:
+            ax.step([p[0] for p in front], [max(p[1], floor) for p in front], where="post", color="grey", lw=0.7, zorder=0)
+        ax.axhline(floor, color="grey", lw=0.5, ls=":")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_ylim(floor / 2, 1)
+        ax.set_title(QUERY_TITLES[q], fontsize=8)
+        ax.tick_params(labelsize=7)
+        ax.grid(alpha=0.3)
+    for ax in axes[-1]:
+        ax.set_xlabel("median ns per query", fontsize=7)
+    for ax in axes[:, 0]:
+        ax.set_ylabel("rate (0 at $10^{-4}$)", fontsize=7)
+    for ax in list(axes.flat)[len(queries):]:
+        ax.axis("off")
+    algo_handles = [plt.Line2D([], [], color=ALGO_COLOURS[a], marker="o", ls="", ms=5,
+                               markerfacecolor="none" if a in ("bullet_margin0", "fcl_mesh", "ode_mesh") else ALGO_COLOURS[a], label=a)
+                    for a in ALGO_COLOURS if a in used_algos]
+    nt_handles = [plt.Line2D([], [], color="grey", marker=m, ls="", ms=5, label=n) for n, m in NT_MARKERS.items() if n in used_nts]
+    fig.legend(handles=algo_handles + nt_handles, loc="lower center", ncol=7, fontsize=6.2, frameon=False)
+    fig.tight_layout(rect=(0, 0.1, 1, 1))
+    name = "pareto_compact"
+    for ext in ("png", "pdf"):
+        path = os.path.join(out, f"{name}.{ext}")
+        fig.savefig(path, dpi=150, metadata={"CreationDate": None} if ext == "pdf" else None)
+        WRITTEN.append(path)
+    plt.close(fig)
+
+
+def gap_rate_overview(rows, out):
+    groups = [("line queries", ("line_cylinder", "ray_cylinder", "segment_cylinder", "line_elliptic_cylinder")),
+              ("triangle", ("triangle_cylinder",)), ("cylinder pair", ("cylinder_cylinder",))]
+    hardware = ("double", "long_double", "float")
+    data = defaultdict(lambda: defaultdict(lambda: defaultdict(lambda: [0, 0])))
+    for r in rows:
+        if r["outcome"] in ("uncertified", "undecided", "error") or r["kind"] in ("sweep", "certified"):
+            continue
+        base, _, nt = r["method"].partition("/")
+        if nt not in hardware:
+            continue
+        lo, hi = fnum(r["gap_lo"]), fnum(r["gap_hi"])
+        if lo <= 0 <= hi:
+            continue
+        g = lo if lo > 0 else hi
+        if not math.isfinite(g):
+            continue
+        e = max(-18, min(1, math.floor(math.log10(abs(g))) + 1))
+        for gi, (_, qs) in enumerate(groups):
+            if r["query"] in qs:
+                cell = data[gi][r["method"]][e]
+                cell[0] += 1
+                cell[1] += r["outcome"] in ("false_positive", "false_negative")
+    fig, axes = plt.subplots(1, 3, figsize=(7.6, 2.9), sharey=True)
+    for gi, (title, _) in enumerate(groups):
+        ax = axes[gi]
+        methods = data[gi]
+        wrong = sorted((m for m, b in methods.items() if any(c[1] for c in b.values())),
+                       key=lambda m: -sum(c[1] for c in methods[m].values()))[:8]
+        for m in wrong:
+            xs, ys = [], []
+            for e, (n, bad) in sorted(methods[m].items()):
+                if n:
+                    xs.append(e)
+                    ys.append(bad / n)
+            base, _, nt = m.partition("/")
+            ax.plot(xs, ys, marker=NT_MARKERS.get(nt, "o"), ms=3.5, lw=0.9, color=ALGO_COLOURS.get(base, "grey"),
+                    ls="-" if nt != "long_double" else "--", label=m.replace("_as_written", " (as written)"))
+        ax.set_title(title, fontsize=8)
+        ax.set_xlabel("$\\log_{10}$ of $|$gap$|$ (bin upper edge)", fontsize=7)
+        ax.tick_params(labelsize=7)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=5.2, loc="upper right", frameon=False)
+    axes[0].set_ylabel("disagreement rate (FP + FN)", fontsize=7)
+    fig.tight_layout()
+    name = "gap_rate_overview"
+    for ext in ("png", "pdf"):
+        path = os.path.join(out, f"{name}.{ext}")
+        fig.savefig(path, dpi=150, metadata={"CreationDate": None} if ext == "pdf" else None)
+        WRITTEN.append(path)
+    plt.close(fig)
+
+
 def t_error(rows, out):
     errs = defaultdict(list)
     for r in rows:
@@ -316,6 +441,8 @@ def main():
     disagreement_tables(families, out)
     gap_rate(rows, out)
     pareto(summary, out)
+    pareto_compact(summary, out)
+    gap_rate_overview(rows, out)
     t_error(rows, out)
     failure_maps(folder, out)
     write_manifest(folder, out)
