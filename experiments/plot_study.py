@@ -14,6 +14,8 @@ Writes PNG and PDF into results/<name>/figures/ (or DIR):
   t_error                line queries: error of the entry parameter t in ulps, per method
   pareto_t_error         line queries: median ns against the 99th percentile of the t error
   map_<name>             failure maps: each method's answer on the ulp grid, disagreements marked
+  map_compact_<name>     the same with at most 8 panels (methods with identical answers on every
+                         cell share a panel), legible at a page's width
   manifest.json          the SHA-256 of every file read (relative to the results folder) and of
                          every figure written, so a consumer (the paper) can tell whether a figure
                          comes from the study outputs it sits beside
@@ -421,6 +423,59 @@ def failure_maps(folder, out):
         step = meta.get("ulps_per_cell", 1)
         fig.suptitle(f"{meta.get('description', name)}: {n}x{n} cells, {step} ulp per cell", fontsize=9)
         save(fig, out, "map_" + name[:-4])
+        map_compact(rows, methods, n, name[:-4], out)
+
+
+def map_compact(rows, methods, n, name, out):
+    """At most 8 panels: the certified answer, then the methods in the order double, float,
+    long double, interval, other; methods whose answers agree on every cell share a panel."""
+    nt_rank = {"double": 0, "float": 1, "long_double": 2, "interval": 3}
+    others = sorted((m for m in methods if m != "certified"), key=lambda m: (nt_rank.get(m.partition("/")[2], 9), m))
+    panels = [["certified"]]
+    columns = {"certified": tuple(r["certified"] for r in rows)}
+    for m in others:
+        col = tuple(r[m] for r in rows)
+        for p in panels:
+            if columns[p[0]] == col and p[0] != "certified":
+                p.append(m)
+                break
+        else:
+            columns[m] = col
+            panels.append([m])
+    panels = panels[:8]
+    cols = 4
+    rn = math.ceil(len(panels) / cols)
+    fig, axes = plt.subplots(rn, cols, figsize=(7.6, 2.35 * rn + 0.4), squeeze=False)
+    cmap = ListedColormap(CODE_COLOURS)
+    for ax, p in zip(axes.flat, panels):
+        m = p[0]
+        img = np.zeros((n, n))
+        bad = np.zeros((n, n), dtype=bool)
+        for r in rows:
+            i, j = int(r["i"]), int(r["j"])
+            c = r[m]
+            img[j, i] = CODES.index(c)
+            if m != "certified" and c not in "ue" and meets(c) != meets(r["certified"]):
+                bad[j, i] = True
+        ax.imshow(img, cmap=cmap, vmin=-0.5, vmax=len(CODES) - 0.5, origin="lower", interpolation="nearest")
+        if bad.any():
+            overlay = np.ma.masked_where(~bad, np.ones((n, n)))
+            ax.imshow(overlay, cmap=ListedColormap(["magenta"]), alpha=0.6, origin="lower", interpolation="nearest")
+        label = "\n".join(p[:2]) + (f" (+{len(p) - 2})" if len(p) > 2 else "")
+        ax.set_title(label + ("" if m == "certified" else f"\n{int(bad.sum())} wrong"), fontsize=6.5)
+        ax.set_xticks([])
+        ax.set_yticks([])
+    for ax in list(axes.flat)[len(panels):]:
+        ax.axis("off")
+    handles = [plt.Line2D([], [], color=c, marker="s", ls="", label=l) for c, l in zip(CODE_COLOURS, ["separated", "touching", "overlapping", "intersecting", "undecided", "error"])]
+    handles.append(plt.Line2D([], [], color="magenta", marker="s", ls="", label="wrong"))
+    fig.legend(handles=handles, loc="lower center", ncol=7, fontsize=6.5, frameon=False)
+    fig.tight_layout(rect=(0, 0.06, 1, 1))
+    for ext in ("png", "pdf"):
+        path = os.path.join(out, f"map_compact_{name}.{ext}")
+        fig.savefig(path, dpi=150, metadata={"CreationDate": None} if ext == "pdf" else None)
+        WRITTEN.append(path)
+    plt.close(fig)
 
 
 def main():
