@@ -290,6 +290,7 @@ def main():
     tally_q = defaultdict(Tally)
     terr = defaultdict(list)
     wrong_gap = defaultdict(float)  # largest certified lower bound of |gap| among wrong answers
+    fn_touching = Counter()  # false negatives on instances whose certified answer is touching
     for r in rows:
         m = r["method"]
         tally[m].add(r)
@@ -297,6 +298,8 @@ def main():
         t = fnum(r["t_error_ulps"])
         if not math.isnan(t):
             terr[(r["query"], m)].append(t)
+        if r["outcome"] == "false_negative" and r["certified_answer"] == "touching":
+            fn_touching[m] += 1
         if r["outcome"] in ("false_positive", "false_negative"):
             lo, hi = fnum(r["gap_lo"]), fnum(r["gap_hi"])
             g = 0.0 if lo <= 0 <= hi else min(abs(lo), abs(hi))
@@ -315,6 +318,7 @@ def main():
         N[f"ns:{m}"] = ns_text(upper_median(t.ns))
         N[f"q:{m}"] = str(len(t.queries))
         N[f"maxwronggap:{m}"] = sci(wrong_gap.get(m, 0.0))
+        N[f"fntouch:{m}"] = str(fn_touching.get(m, 0))
     for (q, m), t in tally_q.items():
         N[f"n:{q}:{m}"] = str(t.n)
         N[f"fp:{q}:{m}"] = str(t.fp)
