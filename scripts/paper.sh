@@ -6,10 +6,12 @@
 #   bash scripts/paper.sh RESULTS_DIR   the paper of an existing results folder (no study run)
 # The PDF is build/paper/paper.pdf; everything generated stays under build/paper/.
 set -euo pipefail
+given=""
+if [ $# -ge 1 ]; then given=$(realpath -m "$1"); fi
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh --study --paper
-if [ $# -ge 1 ]; then
-  results=$1
+if [ -n "$given" ]; then
+  results=$given
   [ -f "$results/instances.csv" ] || { echo "paper.sh: $results has no instances.csv (not a study results folder)" >&2; exit 2; }
 else
   mkdir -p build
