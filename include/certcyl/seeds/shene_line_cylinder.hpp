@@ -1,6 +1,7 @@
 // certcyl/seeds/shene_line_cylinder.hpp -- Shene's geometric line/cylinder intersection
-// (Graphics Gems V, "Computing the intersection of a line and a cylinder"), as written, made
-// generic over the number type and completed for the finite solid cylinder.
+// (Graphics Gems IV, ed. Heckbert, 1994, pp. 353-355: "Computing the intersection of a line and
+// a cylinder"), as written, made generic over the number type and completed for the finite solid
+// cylinder.
 //
 // The text, for a line l(A, u) and the infinite cylinder C(B, v, r) with unit u, v:
 //   - parallel axes: the line misses the surface unless its distance to B is r (then it lies

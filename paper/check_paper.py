@@ -1,0 +1,137 @@
+#!/usr/bin/python3
+"""Checks that a built paper comes from the study outputs it claims to come from.
+
+    /usr/bin/python3 paper/check_paper.py OUT_DIR RESULTS_DIR
+
+OUT_DIR is where paper/build.sh built the paper (paper.tex, generated/, figures/, paper.pdf).
+Fails (exit status 1, one line per problem) when
+  - a file that paper.tex \\input's or \\includegraphics's is missing from OUT_DIR;
+  - such a file is not an output listed in generated/manifest.json or figures/manifest.json,
+    or its SHA-256 differs from the one recorded there (edited or replaced after generation);
+  - a manifest records a study file (CSV or JSON) whose SHA-256 differs from the file now in
+    RESULTS_DIR, or that is missing there (the table or figure is stale);
+  - the manifests do not cover the study's main CSV files;
+  - paper.pdf is missing, older than a file it includes, or has an implausible page count
+    (pdfinfo), or the LaTeX log reports undefined references or citations.
+"""
+import hashlib
+import json
+import os
+import re
+import subprocess
+import sys
+
+MIN_PAGES, MAX_PAGES = 6, 20
+REQUIRED_INPUTS = ["instances.csv", "inputs.csv", "summary.csv", "summary_families.csv", "hunt.csv"]
+
+
+def sha256(path):
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def included_files(tex):
+    """Paths that the .tex includes: \\input{...} and \\includegraphics[...]{...}, comments removed."""
+    text = "\n".join(re.sub(r"(?<!\\)%.*", "", line) for line in tex.splitlines())
+    files = []
+    for m in re.finditer(r"\\input\{([^}]+)\}", text):
+        p = m.group(1)
+        files.append(p if os.path.splitext(p)[1] else p + ".tex")
+    for m in re.finditer(r"\\includegraphics(?:\[[^\]]*\])?\{([^}]+)\}", text):
+        files.append(m.group(1))
+    return files
+
+
+def main():
+    if len(sys.argv) != 3:
+        print(__doc__)
+        return 2
+    out, res = sys.argv[1], sys.argv[2]
+    problems = []
+    with open(os.path.join(out, "paper.tex")) as f:
+        tex = f.read()
+    files = included_files(tex)
+    if not files:
+        problems.append("paper.tex includes no generated file")
+
+    # The manifests of the two generators, keyed by the subdirectory they describe.
+    manifests = {}
+    for sub in ("generated", "figures"):
+        mpath = os.path.join(out, sub, "manifest.json")
+        if not os.path.exists(mpath):
+            problems.append(f"{sub}/manifest.json is missing")
+            continue
+        with open(mpath) as f:
+            manifests[sub] = json.load(f)
+
+    # Every study file a generator read must be unchanged in RESULTS_DIR.
+    covered = set()
+    for sub, man in manifests.items():
+        for rel, digest in man.get("inputs", {}).items():
+            covered.add(rel)
+            p = os.path.join(res, rel)
+            if not os.path.exists(p):
+                problems.append(f"{sub}: read {rel}, which is not in {res}")
+            elif sha256(p) != digest:
+                problems.append(f"{sub}: stale, {rel} changed since it was generated")
+    for sub in manifests:
+        for rel in REQUIRED_INPUTS:
+            if sub == "generated" and rel not in manifests[sub].get("inputs", {}):
+                problems.append(f"{sub}: did not read {rel}")
+    if "figures" in manifests and "instances.csv" not in manifests["figures"].get("inputs", {}):
+        problems.append("figures: did not read instances.csv")
+
+    # Every included file exists and is a recorded, unmodified output of a generator.
+    newest = 0.0
+    for rel in files:
+        p = os.path.join(out, rel)
+        if not os.path.exists(p):
+            problems.append(f"missing: {rel} (included by paper.tex)")
+            continue
+        newest = max(newest, os.path.getmtime(p))
+        sub, _, inner = rel.partition("/")
+        man = manifests.get(sub)
+        if man is None:
+            problems.append(f"{rel}: not under generated/ or figures/, so not generated from the study")
+            continue
+        digest = man.get("outputs", {}).get(inner)
+        if digest is None:
+            problems.append(f"{rel}: not an output of {man.get('generator', sub)}")
+        elif sha256(p) != digest:
+            problems.append(f"{rel}: changed after it was generated")
+
+    # The PDF.
+    pdf = os.path.join(out, "paper.pdf")
+    if not os.path.exists(pdf):
+        problems.append("paper.pdf is missing")
+    else:
+        if os.path.getmtime(pdf) < newest:
+            problems.append("paper.pdf is older than a file it includes")
+        info = subprocess.run(["pdfinfo", pdf], capture_output=True, text=True)
+        m = re.search(r"^Pages:\s+(\d+)", info.stdout, re.M)
+        pages = int(m.group(1)) if m else 0
+        if not MIN_PAGES <= pages <= MAX_PAGES:
+            problems.append(f"paper.pdf has {pages} pages, expected {MIN_PAGES} to {MAX_PAGES}")
+        log = os.path.join(out, "paper.log")
+        if os.path.exists(log):
+            with open(log, errors="replace") as f:
+                text = f.read()
+            for pat in (r"Reference `[^']*' on page \d+ undefined", r"Citation `[^']*' on page \d+ undefined"):
+                for w in sorted(set(re.findall(pat, text))):
+                    problems.append("LaTeX: " + w)
+        else:
+            problems.append("paper.log is missing")
+
+    if problems:
+        for p in problems:
+            print("check_paper: " + p)
+        return 1
+    print(f"check_paper: {len(files)} included files, all generated from {res}; paper.pdf has {pages} pages")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# ctest 'paper': runs a tiny study, builds the paper against it (paper/build.sh, which ends with
+# paper/check_paper.py: every included table and figure exists and was generated from this
+# study's files, the PDF exists with a plausible page count), then shows that the checker
+# rejects a paper whose figure is missing and one whose figures are stale.
+#   run_paper_test.sh CERTCYL_BINARY SOURCE_DIR WORK_DIR
+set -euo pipefail
+certcyl=$1
+src=$2
+work=$3
+rm -rf "$work"
+mkdir -p "$work"
+"$certcyl" study --size tiny --seed 1 --out "$work" --name tiny --no-plots --threads 2 > "$work/study.log"
+bash "$src/paper/build.sh" --lenient "$work/tiny" "$work/paper"
+
+check() { /usr/bin/python3 "$src/paper/check_paper.py" "$@"; }
+
+# A figure the paper includes, deleted after the build: the check must fail.
+figure=$(sed 's/%.*//' "$src/paper/paper.tex" | grep -o 'figures/[^}]*\.pdf' | head -n 1)
+[ -n "$figure" ] || { echo "paper.tex includes no figure"; exit 1; }
+cp -a "$work/paper" "$work/missing"
+rm "$work/missing/$figure"
+if check "$work/missing" "$work/tiny" > "$work/missing.log"; then
+  echo "FAILED: a missing $figure was not detected"; exit 1
+fi
+grep -q "missing: $figure" "$work/missing.log" || { cat "$work/missing.log"; echo "FAILED: no 'missing' report"; exit 1; }
+
+# Stale figures: another study (a different seed) replaces the results, the tables are
+# regenerated from it but the figures are not: the check must fail on the figures.
+"$certcyl" study --size tiny --seed 2 --out "$work" --name tiny2 --no-plots --threads 2 > "$work/study2.log"
+cp -a "$work/paper" "$work/stale"
+/usr/bin/python3 "$src/paper/make_tables.py" "$work/tiny2" "$work/stale/generated" > /dev/null
+if check "$work/stale" "$work/tiny2" > "$work/stale.log"; then
+  echo "FAILED: stale figures were not detected"; exit 1
+fi
+grep -q "^check_paper: figures: stale" "$work/stale.log" || { cat "$work/stale.log"; echo "FAILED: no 'stale' report for the figures"; exit 1; }
+if grep -q "^check_paper: generated: stale" "$work/stale.log"; then
+  cat "$work/stale.log"; echo "FAILED: the regenerated tables were reported stale"; exit 1
+fi
+echo "paper test: built, checked, and the checker rejects a missing and a stale figure"
