@@ -14,7 +14,7 @@ packages=(
 for arg in "$@"; do
   case "$arg" in
     --study) packages+=(libfcl-dev libbullet-dev libode-dev python3-matplotlib python3-numpy) ;;
-    --paper) packages+=(texlive-latex-recommended texlive-latex-extra texlive-science latexmk poppler-utils) ;;
+    --paper) packages+=(texlive-latex-recommended texlive-latex-extra latexmk poppler-utils) ;;
     --fuzz) packages+=(clang libclang-rt-14-dev) ;;
     *) echo "install-deps.sh: unknown option '$arg' (expected --study, --paper or --fuzz)" >&2; exit 2 ;;
   esac
