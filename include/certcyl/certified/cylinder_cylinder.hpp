@@ -652,13 +652,7 @@ class CylinderCylinderSolver {
       }
     }
     // else: no cheap point is proved interior; the cheap directions, T again among them.
-    const std::array<Vec3<double>, 7> directions{d.T,
-                                                 d.AA0 * d.T - dot(d.A0, d.T) * d.A0,
-                                                 d.AA1 * d.T - dot(d.A1, d.T) * d.A1,
-                                                 cross(d.A0, d.A1),
-                                                 closest.second - closest.first,
-                                                 d.A0,
-                                                 d.A1};
+    const std::array<Vec3<double>, 7> directions = cheap_directions(closest);
     Vec3<double> best_D = d.T;
     double best_ratio = std::numeric_limits<double>::infinity();
     for (Vec3<double> D : directions) {
@@ -686,13 +680,7 @@ class CylinderCylinderSolver {
     const CylinderPair<double>& d = dbl_;
     const double k0 = 4 * d.c0.radius * d.c0.radius / d.AA0, k1 = 4 * d.c1.radius * d.c1.radius / d.AA1;
     const std::pair<Point3<double>, Point3<double>> closest = closest_segment_points(d.c0.p0, d.A0, d.c1.p0, d.A1);
-    const std::array<Vec3<double>, 7> directions{d.T,
-                                                 d.AA0 * d.T - dot(d.A0, d.T) * d.A0,
-                                                 d.AA1 * d.T - dot(d.A1, d.T) * d.A1,
-                                                 cross(d.A0, d.A1),
-                                                 closest.second - closest.first,
-                                                 d.A0,
-                                                 d.A1};
+    const std::array<Vec3<double>, 7> directions = cheap_directions(closest);
     Vec3<double> D = d.T;
     double best_ratio = std::numeric_limits<double>::infinity();
     for (const Vec3<double>& E : directions) {
@@ -772,6 +760,14 @@ class CylinderCylinderSolver {
     const double rl = std::sqrt(dot(radial, radial)), limit = s * c.radius;
     if (rl > limit) radial = (limit / rl) * radial;
     return m + std::clamp(t, -s / 2, s / 2) * A + radial;
+  }
+
+  // T, its parts orthogonal to each axis, A0 x A1, the difference of the closest points of the
+  // axis segments, A0, A1.
+  std::array<Vec3<double>, 7> cheap_directions(const std::pair<Point3<double>, Point3<double>>& closest) const {
+    const CylinderPair<double>& d = dbl_;
+    return {d.T, d.AA0 * d.T - dot(d.A0, d.T) * d.A0, d.AA1 * d.T - dot(d.A1, d.T) * d.A1, cross(d.A0, d.A1),
+            closest.second - closest.first, d.A0, d.A1};
   }
 
   // The r0:r1 point and the midpoint of the closest points c0, c1 of the axis segments, the
