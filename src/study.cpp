@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -442,30 +443,59 @@ struct MapSpec {
   std::string name, family, description;
   Query query;
   std::size_t c0, c1;  // the perturbed coordinates
+  // When set (the aligned families, whose axis is a random coordinate axis): c0 and c1 are
+  // offsets into the point at `c0`, replaced by its two coordinates across the axis of the
+  // cylinder at this offset, so the map moves the point off the wall and not along the axis.
+  std::size_t across_cylinder_at = std::numeric_limits<std::size_t>::max();
 };
 
+// One map per query, each around a degenerate configuration of one of its families (k = 0).
 std::vector<MapSpec> map_specs() {
   return {{"tangent_line", "tangent_rotated", "line tangent to the wall; origin x and y perturbed", Query::line_cylinder, 0, 1},
           {"rim_line", "rim_rotated", "line grazing the rim at p1; origin x and y perturbed", Query::line_cylinder, 0, 1},
+          {"ray_ends_on_wall", "ends_on_wall", "ray starting on the wall, pointing out; origin perturbed across the axis",
+           Query::ray_cylinder, 0, 0, 6},
+          {"segment_ends_on_wall", "ends_on_wall", "segment from outside ending on the wall; p1 perturbed across the axis",
+           Query::segment_cylinder, 3, 0, 6},
+          {"elliptic_tangent", "e_tangent_oblique", "line tangent to a sheared elliptic cylinder; origin x and z perturbed",
+           Query::line_elliptic_cylinder, 0, 2},
+          {"triangle_edge_wall", "t_edge_rotated", "triangle edge tangent to the wall; vertex v0 x and y perturbed",
+           Query::triangle_cylinder, 0, 1},
           {"touching_cylinders", "c_crossing_rotated", "crossing cylinders touching wall to wall; b.p0 x and y perturbed",
            Query::cylinder_cylinder, 7, 8}};
 }
 
+// Every method of the query but the certified one; slow ones on a sub-grid (Effort).
 void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs::path& dir) {
   const fs::path maps = dir / "failure_maps";
   fs::create_directories(maps);
   const auto families = all_families();
-  for (const MapSpec& spec : map_specs()) {
+  for (MapSpec spec : map_specs()) {
     const Family* fam = nullptr;
     for (const Family& f : families)
-      if (f.name == spec.family) fam = &f;
+      if (f.name == spec.family && std::find(f.queries.begin(), f.queries.end(), spec.query) != f.queries.end()) fam = &f;
+    if (!fam) throw std::logic_error("failure map " + spec.name + ": no family " + spec.family);
     Rng rng(mix(o.seed, hash_string(spec.name)));
     const std::vector<double> base = fam->make(rng, spec.query, 0).x;
+    if (spec.across_cylinder_at != std::numeric_limits<std::size_t>::max()) {
+      const std::size_t point = spec.c0, cyl = spec.across_cylinder_at;
+      std::array<std::size_t, 3> order{0, 1, 2};
+      std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return std::fabs(base[cyl + 3 + a] - base[cyl + a]) < std::fabs(base[cyl + 3 + b] - base[cyl + b]);
+      });
+      spec.c0 = point + std::min(order[0], order[1]);
+      spec.c1 = point + std::max(order[0], order[1]);
+    }
     std::vector<const Method*> methods;
     for (const Method& m : registry)
-      if (m.query == spec.query && m.cheap && m.stride == 1 && m.kind != MethodKind::certified && keep_name(o.methods, m.name()))
-        methods.push_back(&m);
+      if (m.query == spec.query && m.kind != MethodKind::certified && keep_name(o.methods, m.name())) methods.push_back(&m);
     const int n = o.map_cells;
+    // A method with map_stride s runs on the rows and columns i with i = n/2 (mod s): the
+    // centre cell, the degenerate configuration itself, is always among them.
+    auto evaluated = [n](const Method& m, long i, long j) {
+      const long s = static_cast<long>(std::max(1u, m.effort.map_stride));
+      return (i - n / 2) % s == 0 && (j - n / 2) % s == 0;
+    };
     std::vector<std::string> lines(static_cast<std::size_t>(n) * n);
     Progress progress(o.progress, spec.name, lines.size());
     parallel_for(lines.size(), o.threads, [&](std::size_t cell) {
@@ -479,7 +509,7 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
       certify(inst);
       std::string line = std::to_string(i) + "," + std::to_string(j) + "," + std::to_string(d0) + "," + std::to_string(d1) + "," +
                          std::string(1, answer_code(three_valued(inst.certified))) + "," + num(inst.gap_lo) + "," + num(inst.gap_hi);
-      for (const Method* m : methods) line += std::string(",") + answer_code(run_quiet(*m, inst.x));
+      for (const Method* m : methods) line += std::string(",") + (evaluated(*m, i, j) ? answer_code(run_quiet(*m, inst.x)) : '.');
       lines[cell] = line;
       progress.tick();
     });
@@ -488,6 +518,9 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
     for (const Method* m : methods) csv << ',' << m->name();
     csv << '\n';
     for (const auto& l : lines) csv << l << '\n';
+    nlohmann::ordered_json strides = nlohmann::ordered_json::object();
+    for (const Method* m : methods)
+      if (m->effort.map_stride > 1) strides[m->name()] = m->effort.map_stride;
     nlohmann::ordered_json meta{{"name", spec.name},
                                 {"query", std::string(to_string(spec.query))},
                                 {"description", spec.description},
@@ -495,7 +528,9 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
                                 {"perturbed_coordinates", {spec.c0, spec.c1}},
                                 {"cells", n},
                                 {"ulps_per_cell", o.map_step},
-                                {"codes", "s separated, t touching, o overlapping, i intersecting (boolean methods), u undecided, e error"}};
+                                {"map_strides", strides},
+                                {"codes", "s separated, t touching, o overlapping, i intersecting (boolean methods), u undecided, e error, "
+                                          ". not evaluated (a slow method runs on every map_stride-th row and column through the centre)"}};
     std::ofstream(maps / (spec.name + ".json")) << meta.dump(2) << '\n';
   }
 }
@@ -507,11 +542,12 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
 // kept within 2^-6 of its start, relative to the largest input coordinate) that keeps the
 // method wrong (false positive or false negative) while pushing the certified lower bound of
 // |gap| up. The result is the wrong answer farthest from any degeneracy that the search found.
+// Every method but the certified one is hunted; a slow one gets 1/hunt_divisor of the budget.
 void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& dir) {
   std::vector<const Method*> methods;
   for (std::size_t i = 0; i < registry.size(); ++i) {
     const Method& m = registry[i];
-    if (m.cheap && m.kind != MethodKind::certified && keep_name(o.methods, m.name()) &&
+    if (m.kind != MethodKind::certified && keep_name(o.methods, m.name()) &&
         static_cast<int>(i % o.shard_count) == o.shard_index)
       methods.push_back(&m);
   }
@@ -524,7 +560,8 @@ void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& d
     for (const Family& f : families)
       if (std::find(f.queries.begin(), f.queries.end(), m.query) != f.queries.end() && f.name != "uniform") starts.push_back(&f);
     Rng rng(mix(o.seed, hash_string(m.name() + std::string(to_string(m.query)))));
-    const long budget = m.query == Query::cylinder_cylinder ? std::max(1L, o.hunt_evaluations / 4) : o.hunt_evaluations;
+    const long query_budget = m.query == Query::cylinder_cylinder ? std::max(1L, o.hunt_evaluations / 4) : o.hunt_evaluations;
+    const long budget = std::max(1L, query_budget / static_cast<long>(std::max(1u, m.effort.hunt_divisor)));
     const long restarts = std::max(1L, budget / 50);
     long evaluations = 0;
     double best_score = -std::numeric_limits<double>::infinity();
@@ -737,6 +774,83 @@ int run_study(StudyOptions o, std::ostream& out) {
   return 0;
 }
 
+namespace {
+
+// The shards of a study folder, checked: each shard-* folder holds a machine.json whose
+// "shard" is i/n (the folder's name is not trusted: a copied folder is a duplicate); every
+// shard shares one n, one configuration (every option but the shard, the thread count and the
+// name) and one build (commit, compiler, flags, CGAL, peer libraries); each of
+// 0..n-1 is there exactly once. Throws std::runtime_error naming what differs or is missing.
+std::vector<fs::path> checked_shards(const fs::path& dir, std::vector<fs::path> shards, nlohmann::json& machine) {
+  std::sort(shards.begin(), shards.end());
+  struct Seen {
+    fs::path path;
+    nlohmann::json machine;
+  };
+  std::vector<Seen> seen;
+  for (const fs::path& s : shards) {
+    std::ifstream in(s / "machine.json");
+    if (!in) throw std::runtime_error("merge: " + s.string() + ": no machine.json (an unfinished or foreign shard?)");
+    Seen entry{s, nlohmann::json::parse(in, nullptr, false)};
+    if (entry.machine.is_discarded() || !entry.machine.contains("options") || !entry.machine["options"].contains("shard"))
+      throw std::runtime_error("merge: " + (s / "machine.json").string() + ": not a study's machine.json");
+    seen.push_back(std::move(entry));
+  }
+  const Seen& first = seen.front();
+  auto where = [](const Seen& e) { return e.path.filename().string(); };
+  int count = -1;
+  std::map<int, std::vector<std::string>> by_index;
+  for (const Seen& e : seen) {
+    int index = 0, n = 0;
+    const std::string shard = e.machine["options"]["shard"].get<std::string>();
+    try {
+      parse_shard(shard, index, n);
+    } catch (const std::exception&) {
+      throw std::runtime_error("merge: " + where(e) + ": machine.json has shard '" + shard + "'");
+    }
+    if (count >= 0 && n != count)
+      throw std::runtime_error("merge: shards of different counts: " + where(first) + " is one of " + std::to_string(count) + ", " + where(e) +
+                               " one of " + std::to_string(n));
+    count = n;
+    by_index[index].push_back(where(e));
+    // The configuration and the build must be the same.
+    for (const char* key : {"commit", "compiler", "flags", "cgal", "peers"})
+      if (e.machine.value(key, nlohmann::json()) != first.machine.value(key, nlohmann::json()))
+        throw std::runtime_error(std::string("merge: shards from different builds: ") + key + " is " + first.machine.value(key, nlohmann::json()).dump() +
+                                 " in " + where(first) + " but " + e.machine.value(key, nlohmann::json()).dump() + " in " + where(e));
+    const nlohmann::json& a = first.machine["options"];
+    const nlohmann::json& b = e.machine["options"];
+    std::set<std::string> keys;
+    for (const auto& [k, v] : a.items()) keys.insert(k);
+    for (const auto& [k, v] : b.items()) keys.insert(k);
+    for (const std::string& k : keys) {
+      if (k == "shard" || k == "threads" || k == "name") continue;
+      const nlohmann::json va = a.value(k, nlohmann::json()), vb = b.value(k, nlohmann::json());
+      if (va != vb)
+        throw std::runtime_error("merge: shards of different configurations: " + k + " is " + va.dump() + " in " + where(first) + " but " +
+                                 vb.dump() + " in " + where(e));
+    }
+  }
+  std::string missing, duplicate;
+  for (int i = 0; i < count; ++i) {
+    const auto it = by_index.find(i);
+    if (it == by_index.end()) missing += (missing.empty() ? "" : ", ") + std::to_string(i);
+  }
+  for (const auto& [i, folders] : by_index) {
+    if (folders.size() < 2) continue;
+    duplicate += std::string(duplicate.empty() ? "" : "; ") + std::to_string(i) + " (";
+    for (std::size_t k = 0; k < folders.size(); ++k) duplicate += (k ? ", " : "") + folders[k];
+    duplicate += ")";
+  }
+  if (!missing.empty())
+    throw std::runtime_error("merge: missing shard(s) " + missing + " of " + std::to_string(count) + " in " + dir.string());
+  if (!duplicate.empty()) throw std::runtime_error("merge: duplicate shard(s) " + duplicate + " in " + dir.string());
+  machine = first.machine;
+  return shards;
+}
+
+}  // namespace
+
 int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
   const fs::path dir(dir_name);
   std::vector<fs::path> shards;
@@ -747,11 +861,12 @@ int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
     out << "merge: no shard-*-of-* folders in " << dir_name << '\n';
     return 1;
   }
+  nlohmann::json machine;
+  shards = checked_shards(dir, std::move(shards), machine);
   std::sort(shards.begin(), shards.end());
   // Instances and inputs in instance order; hunting lines in method order; maps from shard 0.
   std::vector<std::pair<std::uint64_t, std::string>> rows, inputs;
   std::vector<std::string> hunt;
-  nlohmann::json machine;
   for (const fs::path& s : shards) {
     auto read = [&](const char* file, std::vector<std::pair<std::uint64_t, std::string>>& into, std::size_t id_field) {
       std::ifstream in(s / file);
@@ -767,8 +882,6 @@ int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
     std::getline(h, line);
     while (std::getline(h, line)) hunt.push_back(line);
     if (fs::exists(s / "failure_maps")) fs::copy(s / "failure_maps", dir / "failure_maps", fs::copy_options::recursive | fs::copy_options::overwrite_existing);
-    std::ifstream m(s / "machine.json");
-    if (m && machine.is_null()) machine = nlohmann::json::parse(m);
   }
   std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::stable_sort(inputs.begin(), inputs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -784,6 +897,7 @@ int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
     h << "method,query,start_family,evaluations,found,answer,certified_answer,outcome,gap_lo,gap_hi,input_hex\n";
     for (const auto& l : hunt) h << l << '\n';
     machine["merged_shards"] = shards.size();
+    machine["options"]["shard"] = "merged";
     std::ofstream(dir / "machine.json") << machine.dump(2) << '\n';
   }
   out << write_summary(dir);
