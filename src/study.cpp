@@ -19,10 +19,12 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -31,6 +33,9 @@
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <CGAL/version.h>
 
@@ -496,28 +501,45 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
       const long s = static_cast<long>(std::max(1u, m.effort.map_stride));
       return (i - n / 2) % s == 0 && (j - n / 2) % s == 0;
     };
-    std::vector<std::string> lines(static_cast<std::size_t>(n) * n);
-    Progress progress(o.progress, spec.name, lines.size());
-    parallel_for(lines.size(), o.threads, [&](std::size_t cell) {
+    const std::size_t cells = static_cast<std::size_t>(n) * n;
+    std::vector<std::string> lines(cells), codes(cells, std::string(methods.size(), '.'));
+    auto cell_input = [&](std::size_t cell) {
+      const long i = static_cast<long>(cell) / n, j = static_cast<long>(cell) % n;
+      std::vector<double> x = base;
+      x[spec.c0] = ulp_step(base[spec.c0], (i - n / 2) * o.map_step);
+      x[spec.c1] = ulp_step(base[spec.c1], (j - n / 2) * o.map_step);
+      return x;
+    };
+    Progress progress(o.progress, spec.name, cells);
+    parallel_for(cells, o.threads, [&](std::size_t cell) {
       const long i = static_cast<long>(cell) / n, j = static_cast<long>(cell) % n;
       const long d0 = (i - n / 2) * o.map_step, d1 = (j - n / 2) * o.map_step;
       Instance inst;
       inst.query = spec.query;
-      inst.x = base;
-      inst.x[spec.c0] = ulp_step(base[spec.c0], d0);
-      inst.x[spec.c1] = ulp_step(base[spec.c1], d1);
+      inst.x = cell_input(cell);
       certify(inst);
-      std::string line = std::to_string(i) + "," + std::to_string(j) + "," + std::to_string(d0) + "," + std::to_string(d1) + "," +
-                         std::string(1, answer_code(three_valued(inst.certified))) + "," + num(inst.gap_lo) + "," + num(inst.gap_hi);
-      for (const Method* m : methods) line += std::string(",") + (evaluated(*m, i, j) ? answer_code(run_quiet(*m, inst.x)) : '.');
-      lines[cell] = line;
+      lines[cell] = std::to_string(i) + "," + std::to_string(j) + "," + std::to_string(d0) + "," + std::to_string(d1) + "," +
+                    std::string(1, answer_code(three_valued(inst.certified))) + "," + num(inst.gap_lo) + "," + num(inst.gap_hi);
+      for (std::size_t k = 0; k < methods.size(); ++k)
+        if (!methods[k]->serial && evaluated(*methods[k], i, j)) codes[cell][k] = answer_code(run_quiet(*methods[k], inst.x));
       progress.tick();
     });
+    // The serial methods, on this thread only (see Method::serial).
+    for (std::size_t k = 0; k < methods.size(); ++k) {
+      if (!methods[k]->serial) continue;
+      for (std::size_t cell = 0; cell < cells; ++cell)
+        if (evaluated(*methods[k], static_cast<long>(cell) / n, static_cast<long>(cell) % n))
+          codes[cell][k] = answer_code(run_quiet(*methods[k], cell_input(cell)));
+    }
     std::ofstream csv(maps / (spec.name + ".csv"));
     csv << "i,j,d0_ulps,d1_ulps,certified,gap_lo,gap_hi";
     for (const Method* m : methods) csv << ',' << m->name();
     csv << '\n';
-    for (const auto& l : lines) csv << l << '\n';
+    for (std::size_t cell = 0; cell < cells; ++cell) {
+      csv << lines[cell];
+      for (char c : codes[cell]) csv << ',' << c;
+      csv << '\n';
+    }
     nlohmann::ordered_json strides = nlohmann::ordered_json::object();
     for (const Method* m : methods)
       if (m->effort.map_stride > 1) strides[m->name()] = m->effort.map_stride;
@@ -537,6 +559,70 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
 
 // ---- Failure hunting --------------------------------------------------------------------------
 
+// Runs `hunt(trace)` in a child process; returns its hunt.csv line, or, when the child did not
+// finish, a line naming the input it was evaluating when it ended.
+std::string hunt_in_child(const Method& m, const std::function<std::string(const std::function<void(const std::string&)>&)>& hunt) {
+  int fds[2];
+  if (pipe(fds) != 0) return hunt({});
+  std::cout.flush(), std::cerr.flush();
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(fds[0]), close(fds[1]);
+    return hunt({});
+  }
+  if (pid == 0) {
+    close(fds[0]);
+    auto send = [&](const std::string& msg) {
+      const std::string data = msg + '\n';
+      for (std::size_t done = 0; done < data.size();) {
+        const ssize_t n = write(fds[1], data.data() + done, data.size() - done);
+        if (n <= 0) _exit(3);
+        done += static_cast<std::size_t>(n);
+      }
+    };
+    const std::string line = hunt(send);
+    send("L " + line);
+    close(fds[1]);
+    _exit(0);
+  }
+  close(fds[1]);
+  std::string received;
+  char buf[4096];
+  for (ssize_t n; (n = read(fds[0], buf, sizeof buf)) != 0;) {
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      break;
+    }
+    received.append(buf, static_cast<std::size_t>(n));
+  }
+  close(fds[0]);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  std::string family, input, result;
+  long evaluations = 0;
+  std::istringstream lines(received);
+  for (std::string l; std::getline(lines, l);) {
+    if (l.rfind("F ", 0) == 0) family = l.substr(2);
+    if (l.rfind("X ", 0) == 0) input = l.substr(2), ++evaluations;
+    if (l.rfind("L ", 0) == 0) result = l.substr(2);
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && !result.empty()) return result;
+  std::ostringstream line;
+  line << m.name() << ',' << to_string(m.query) << ',' << family << ',' << evaluations << ',';
+  if (input.empty()) {
+    line << "0,,,,,,";
+    return line.str();
+  }
+  Instance inst;
+  inst.query = m.query;
+  std::istringstream hex(input);
+  for (std::string v; hex >> v;) inst.x.push_back(std::strtod(v.c_str(), nullptr));
+  certify(inst);
+  line << "1,process_ended," << to_string(inst.certified) << ",error," << num(inst.gap_lo) << ',' << num(inst.gap_hi) << ',' << input;
+  return line.str();
+}
+
 // For each method: random restarts at the degenerate configurations of its query's families
 // (k = 0), then a local search over ulp perturbations of single coordinates (each coordinate
 // kept within 2^-6 of its start, relative to the largest input coordinate) that keeps the
@@ -554,7 +640,10 @@ void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& d
   const auto families = all_families();
   std::vector<std::string> lines(methods.size());
   Progress progress(o.progress, "hunting", methods.size());
-  parallel_for(methods.size(), o.threads, [&](std::size_t mi) {
+  // `trace`, when set, hears of each start family ("F name") and of each input before the
+  // method runs on it ("X hexfloats"): the parent of a hunt run in a child process learns
+  // which input ended the process.
+  auto hunt_one = [&](std::size_t mi, const std::function<void(const std::string&)>& trace) {
     const Method& m = *methods[mi];
     std::vector<const Family*> starts;
     for (const Family& f : families)
@@ -572,6 +661,7 @@ void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& d
       ++evaluations;
       certify(inst);
       if (inst.certified == Answer::undecided) return -std::numeric_limits<double>::infinity();
+      if (trace) trace("X " + x_hex(inst.x));
       out = run_quiet(m, inst.x);
       if (!disagrees(judge(out, inst.certified))) return -std::numeric_limits<double>::infinity();
       // The certified lower bound of |gap| (0 when the enclosure contains 0).
@@ -583,6 +673,7 @@ void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& d
       Instance cur;
       cur.query = m.query;
       cur.x = f->make(rng, m.query, 0).x;
+      if (trace) trace("F " + f->name);
       const std::vector<double> start = cur.x;
       double scale = 0;
       for (double v : start) scale = std::max(scale, std::fabs(v));
@@ -619,8 +710,25 @@ void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& d
     else
       line << ",,,,,,";
     lines[mi] = line.str();
+  };
+  // The parallel methods on the threads, then the serial ones on this thread only, each in a
+  // child process: CORE::Expr ends the process (abort, or exit(1) from its BigFloat division)
+  // on some inputs the hunt reaches, tiny non-zero components among them (experiments/STUDY.md).
+  // The worst input is then the one that ended the process (answer process_ended, outcome
+  // error). No other thread runs when the child is forked.
+  std::vector<std::size_t> parallel_ones, serial_ones;
+  for (std::size_t mi = 0; mi < methods.size(); ++mi) (methods[mi]->serial ? serial_ones : parallel_ones).push_back(mi);
+  parallel_for(parallel_ones.size(), o.threads, [&](std::size_t k) {
+    hunt_one(parallel_ones[k], {});
     progress.tick();
   });
+  for (std::size_t mi : serial_ones) {
+    lines[mi] = hunt_in_child(*methods[mi], [&](const std::function<void(const std::string&)>& trace) {
+      hunt_one(mi, trace);
+      return lines[mi];
+    });
+    progress.tick();
+  }
   std::sort(lines.begin(), lines.end());  // the order of a merge of shards
   std::ofstream csv(dir / "hunt.csv");
   csv << "method,query,start_family,evaluations,found,answer,certified_answer,outcome,gap_lo,gap_hi,input_hex\n";
@@ -722,29 +830,45 @@ int run_study(StudyOptions o, std::ostream& out) {
 
   std::vector<Planned> plan = plan_instances(o);
   std::vector<std::vector<Row>> rows(plan.size());
+  auto evaluate = [&](Planned& p, const Method& m) {
+    const Instance& inst = p.inst;
+    // The slow types run on a pseudo-random 1/stride of each family (not every stride-th
+    // index, which would pick the k = 0 instances: ulp_offset makes every 8th one k = 0).
+    if (m.query != inst.query || (mix(0, p.index_in_family) >> 32) % m.stride != 0 || !keep_name(o.methods, m.name())) return;
+    const auto [res, ns] = timed(m, inst.x);
+    Row r;
+    r.family = inst.family, r.query = std::string(to_string(inst.query)), r.instance = inst.id, r.k = p.k;
+    r.expected = std::string(to_string(inst.expected));
+    r.method = m.name(), r.base = m.base, r.nt = m.nt, r.kind = std::string(to_string(m.kind));
+    r.answer = answer_label(res), r.certified = std::string(to_string(inst.certified)), r.outcome = outcome_of(res, inst);
+    r.gap_lo = inst.gap_lo, r.gap_hi = inst.gap_hi, r.ns = ns;
+    if (is_line_query(inst.query) && !res.intersecting && intersects(res.answer) && intersects(inst.certified) &&
+        std::isfinite(res.t_in) && std::isfinite(inst.t_in))
+      r.t_error = t_error_ulps(res.t_in, inst.t_in);
+    rows[&p - plan.data()].push_back(std::move(r));
+  };
   Progress progress(o.progress, "instances", plan.size());
   parallel_for(plan.size(), o.threads, [&](std::size_t pi) {
-    Planned& p = plan[pi];
-    Instance& inst = p.inst;
-    certify(inst);
-    for (const Method& m : registry) {
-      // The slow types run on a pseudo-random 1/stride of each family (not every stride-th
-      // index, which would pick the k = 0 instances: ulp_offset makes every 8th one k = 0).
-      if (m.query != inst.query || (mix(0, p.index_in_family) >> 32) % m.stride != 0 || !keep_name(o.methods, m.name())) continue;
-      const auto [res, ns] = timed(m, inst.x);
-      Row r;
-      r.family = inst.family, r.query = std::string(to_string(inst.query)), r.instance = inst.id, r.k = p.k;
-      r.expected = std::string(to_string(inst.expected));
-      r.method = m.name(), r.base = m.base, r.nt = m.nt, r.kind = std::string(to_string(m.kind));
-      r.answer = answer_label(res), r.certified = std::string(to_string(inst.certified)), r.outcome = outcome_of(res, inst);
-      r.gap_lo = inst.gap_lo, r.gap_hi = inst.gap_hi, r.ns = ns;
-      if (is_line_query(inst.query) && !res.intersecting && intersects(res.answer) && intersects(inst.certified) &&
-          std::isfinite(res.t_in) && std::isfinite(inst.t_in))
-        r.t_error = t_error_ulps(res.t_in, inst.t_in);
-      rows[pi].push_back(std::move(r));
-    }
+    certify(plan[pi].inst);
+    for (const Method& m : registry)
+      if (!m.serial) evaluate(plan[pi], m);
     progress.tick();
   });
+  // The serial methods, on this thread only (see Method::serial), in registry order per instance.
+  Progress serial_progress(o.progress, "instances (serial)", plan.size());
+  for (Planned& p : plan) {
+    std::vector<Row> parallel_rows = std::move(rows[&p - plan.data()]);
+    rows[&p - plan.data()].clear();
+    std::size_t next_parallel = 0;
+    for (const Method& m : registry) {
+      if (m.serial) {
+        evaluate(p, m);
+      } else if (m.query == p.inst.query && next_parallel < parallel_rows.size() && parallel_rows[next_parallel].method == m.name()) {
+        rows[&p - plan.data()].push_back(std::move(parallel_rows[next_parallel++]));
+      }
+    }
+    serial_progress.tick();
+  }
   {
     std::ofstream csv(dir / "instances.csv");
     csv << kRowHeader << '\n';

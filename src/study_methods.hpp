@@ -41,7 +41,7 @@ auto to_nt(const Prim& p) {
   return p.map([](double d) { return from_binary64<NT>(d); });
 }
 
-// Marks the methods that must not run concurrently (CORE::Expr).
+// Marks the methods that run one at a time on the main thread (CORE::Expr; see Method::serial).
 inline void mark_serial(study::Registry& r) {
   for (study::Method& m : r)
     if (m.nt == "core_expr") m.serial = true;

@@ -96,6 +96,7 @@ std::string register_ode_methods(study::Registry& r) {
   // meshing a closed solid gets, so a lone triangle is tested with both windings.
   r.push_back({"ode_mesh", "double", MethodKind::peer, Query::triangle_cylinder, 1, {},
                [](const std::vector<double>& x) { return study::boolean_answer(ode_mesh(x, {0, 1, 2}) || ode_mesh(x, {0, 2, 1})); }});
+  r.back().serial = true;  // OPCODE's collider caches are shared between threads
   return std::string("ODE ") + dODE_VERSION;
 }
 

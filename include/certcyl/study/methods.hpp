@@ -85,7 +85,10 @@ struct Method {
   unsigned stride = 1;
   Effort effort{};
   std::function<MethodOutput(const std::vector<double>&)> run;
-  // Runs one call at a time across threads (CORE::Expr's memory pools are shared).
+  // Runs one call at a time, on the study's main thread only, after the parallel work of each
+  // phase: CORE::Expr (two threads at once crashed; calls from two threads in turn, even one
+  // at a time, ended in CORE's "zero divisor" exit on the failure maps) and ODE's trimesh
+  // collider (its OPCODE caches are not thread-safe: a segmentation fault with two threads).
   bool serial = false;
 
   std::string name() const { return base + "/" + nt; }
