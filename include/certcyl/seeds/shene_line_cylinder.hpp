@@ -32,11 +32,12 @@
 // disk, |X - B|^2 <= r^2 (|X - B - axis|^2 <= r^2); otherwise the line misses the solid. With
 // parallel axes the solid is met when the distance is <= r, between the two cap crossings.
 //
-// Parallel test: the axes are taken as parallel when |u x v|^2 or 1 - (u.v)^2 is zero in NT.
-// Both are sin^2 theta in exact arithmetic, and the text divides by the second. In floating
-// point 1 - (u.v)^2 can round to 0 while |u x v|^2 does not (the division would give inf), and
-// CORE::Expr (CGAL 5.5.1) finds 1 - (u.v)^2 zero for some positive values (u = d/|d| with
-// d = (2^-300, 0, -0.890625), v = e_z): its division by an Expr it finds zero aborts the process.
+// Parallel test: the axes are parallel when |u x v|^2 is zero in NT; in an exact type also when
+// 1 - (u.v)^2 is. Both are sin^2 theta, and the text divides by the second: in an exact type they
+// are the same number, but CORE::Expr (CGAL 5.5.1) finds 1 - (u.v)^2 zero for some positive
+// values (u = d/|d| with d = (2^-300, 0, -0.890625), v = e_z) and aborts the process on the
+// division. In floating point the test is |u x v|^2 alone, as the method is usually written
+// (1 - (u.v)^2 rounding to 0 then makes the wall hits infinite and the caps decide).
 //
 // Normalisation (u = d/|d|, v = axis/|axis|) and the ellipse formula need sqrt, so NT is double,
 // long double, Interval_nt, Gmpfr or CORE::Expr. The three-valued answer is the one the method
@@ -78,7 +79,7 @@ LineInterval<NT> shene_line_cylinder(const Line<NT>& line, const Cylinder<NT>& c
   const NT s2 = squared_length(uxv);  // sin^2 theta, as |u x v|^2
   const NT uv = dot(u, v);
   const NT sin2 = one - uv * uv;      // sin^2 theta, as the text's formula writes it
-  if (nt::sign(s2) == CGAL::ZERO || nt::sign(sin2) == CGAL::ZERO) {
+  if (nt::sign(s2) == CGAL::ZERO || (NumberTraits<NT>::is_exact && nt::sign(sin2) == CGAL::ZERO)) {
     // Parallel axes: distance from B to the line.
     const NT dist2 = squared_length(cross(BA, u));
     const CGAL::Comparison_result c = nt::compare(dist2, NT(r * r));
