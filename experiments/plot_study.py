@@ -64,8 +64,8 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
-def save(fig, out, name):
-    fig.tight_layout()
+def save(fig, out, name, rect=None):
+    fig.tight_layout(rect=rect)
     for ext in ("png", "pdf"):
         path = os.path.join(out, f"{name}.{ext}")
         # A fixed creation date keeps the PDF a function of the data (matplotlib honours it).
@@ -383,6 +383,8 @@ def failure_maps(folder, out):
     mapdir = os.path.join(folder, "failure_maps")
     if not os.path.isdir(mapdir):
         return
+    code_index = {c: k for k, c in enumerate(CODES)}
+    meets_code = np.array([meets(c) for c in CODES])
     for name in sorted(os.listdir(mapdir)):
         if not name.endswith(".csv"):
             continue
@@ -393,26 +395,42 @@ def failure_maps(folder, out):
             READ.append(jpath)
             with open(jpath) as f:
                 meta = json.load(f)
+        strides = meta.get("map_strides", {})
         n = max(int(r["i"]) for r in rows) + 1
+        ii = np.array([int(r["i"]) for r in rows])
+        jj = np.array([int(r["j"]) for r in rows])
         methods = ["certified"] + [k for k in rows[0] if k not in ("i", "j", "d0_ulps", "d1_ulps", "certified", "gap_lo", "gap_hi")]
-        cols = 4
+        cert = np.full((n, n), -1)
+        cert[jj, ii] = [code_index[r["certified"]] for r in rows]
+        cols = 6
         rn = math.ceil(len(methods) / cols)
-        fig, axes = plt.subplots(rn, cols, figsize=(3.2 * cols, 3.3 * rn), squeeze=False)
+        fig, axes = plt.subplots(rn, cols, figsize=(2.6 * cols, 2.75 * rn + 0.6), squeeze=False)
         cmap = ListedColormap(CODE_COLOURS)
         for ax, m in zip(axes.flat, methods):
-            img = np.zeros((n, n))
-            bad = np.zeros((n, n), dtype=bool)
-            for r in rows:
-                i, j = int(r["i"]), int(r["j"])
-                c = r[m]
-                img[j, i] = CODES.index(c)
-                if m != "certified" and c not in "ue" and meets(c) != meets(r["certified"]):
-                    bad[j, i] = True
-            ax.imshow(img, cmap=cmap, vmin=-0.5, vmax=len(CODES) - 0.5, origin="lower", interpolation="nearest")
+            s = int(strides.get(m, 1))
+            # A slow method ran on every s-th row and column through the centre only: draw
+            # each evaluated cell as an s x s block around it.
+            code = np.full((n, n), -1)
+            code[jj, ii] = [code_index.get(r[m], -1) for r in rows]
+            sel = (np.arange(n) - n // 2) % s == 0
+            sub = code[np.ix_(sel, sel)]
+            sub_cert = cert[np.ix_(sel, sel)]
+            evaluated = sub >= 0
+            bad = evaluated & (sub != code_index["u"]) & (sub != code_index["e"]) & (meets_code[np.clip(sub, 0, None)] != meets_code[sub_cert])
+            if m == "certified":
+                bad[:] = False
+            lo = np.nonzero(sel)[0]
+            extent = (lo[0] - s / 2, lo[-1] + s / 2, lo[0] - s / 2, lo[-1] + s / 2)
+            ax.imshow(np.ma.masked_where(~evaluated, sub), cmap=cmap, vmin=-0.5, vmax=len(CODES) - 0.5, origin="lower",
+                      interpolation="nearest", extent=extent)
             if bad.any():
-                overlay = np.ma.masked_where(~bad, np.ones((n, n)))
-                ax.imshow(overlay, cmap=ListedColormap(["magenta"]), alpha=0.55, origin="lower", interpolation="nearest")
-            ax.set_title(f"{m} ({int(bad.sum())} wrong)", fontsize=7)
+                overlay = np.ma.masked_where(~bad, np.ones(bad.shape))
+                ax.imshow(overlay, cmap=ListedColormap(["magenta"]), alpha=0.55, origin="lower", interpolation="nearest", extent=extent)
+            ax.set_xlim(-0.5, n - 0.5)
+            ax.set_ylim(-0.5, n - 0.5)
+            cells = int(evaluated.sum())
+            every = "" if s == 1 else f", rows/cols step {s}"
+            ax.set_title(f"{m}\n{int(bad.sum())} of {cells} wrong{every}", fontsize=6)
             ax.set_xticks([])
             ax.set_yticks([])
         for ax in list(axes.flat)[len(methods):]:
@@ -422,13 +440,14 @@ def failure_maps(folder, out):
         fig.legend(handles=handles, loc="lower center", ncol=7, fontsize=7)
         step = meta.get("ulps_per_cell", 1)
         fig.suptitle(f"{meta.get('description', name)}: {n}x{n} cells, {step} ulp per cell", fontsize=9)
-        save(fig, out, "map_" + name[:-4])
-        map_compact(rows, methods, n, name[:-4], out)
+        save(fig, out, "map_" + name[:-4], rect=(0, 0.03, 1, 0.97))
+        map_compact(rows, [m for m in methods if int(strides.get(m, 1)) == 1], n, name[:-4], out)
 
 
 def map_compact(rows, methods, n, name, out):
     """At most 8 panels: the certified answer, then the methods in the order double, float,
-    long double, interval, other; methods whose answers agree on every cell share a panel."""
+    long double, interval, other; methods whose answers agree on every cell share a panel. Only
+    methods evaluated on every cell (the caller leaves out the slow types run on a sub-grid)."""
     nt_rank = {"double": 0, "float": 1, "long_double": 2, "interval": 3}
     others = sorted((m for m in methods if m != "certified"), key=lambda m: (nt_rank.get(m.partition("/")[2], 9), m))
     panels = [["certified"]]

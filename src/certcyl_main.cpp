@@ -9,6 +9,7 @@
 #include "demo.hpp"
 #include "query.hpp"
 #include "scene.hpp"
+#include "scene_generator.hpp"
 #include "study.hpp"
 
 namespace {
@@ -69,10 +70,31 @@ int main(int argc, char** argv) {
       "cylinders may use the center/axis/radius/height form). Writes one JSON line per pair that touches,\n"
       "overlaps or is undecided: {\"a\": name, \"b\": name, \"answer\": ..., \"certificate\": ...}.\n"
       "Broad phase: CGAL::box_intersection_d on closed boxes rounded outward; narrow phase: the certified\n"
-      "queries. A summary and timings go to standard error. Exit status: 0 done, 2 invalid scene, 1 I/O error.");
+      "queries. A one-line summary (counts, seconds per phase) goes to standard error; --stats adds the\n"
+      "same as JSON. Exit status: 0 done, 2 invalid scene, 1 I/O error.\n"
+      "A random scene to try it on: certcyl make-scene --cylinders 100000 --seed 1 > scene.json");
   scene->add_option("FILE", scene_file, "Scene JSON file")->required();
   scene->add_option("--threads", scene_threads, "Worker threads for the narrow phase (default 1; 0 = all cores)");
   scene->add_flag("--progress", scene_progress, "Report progress on standard error (default: when it is a terminal)");
+  bool scene_stats = false;
+  scene->add_flag("--stats", scene_stats,
+                  "Also print on standard error one line 'certcyl scene stats: {JSON}' with the counts (cylinders,\n"
+                  "triangles, candidate_pairs, separated, touching, overlapping, undecided), the wall-clock seconds\n"
+                  "of each phase (read, boxes, broad, narrow, write) and the narrow phase's thread-seconds in the\n"
+                  "certified queries and in formatting their lines");
+
+  certcyl::cli::SceneSpec scene_spec;
+  CLI::App* make_scene = app.add_subcommand("make-scene", "Write a seeded random scene of cylinders for `certcyl scene`");
+  make_scene->footer(
+      "Random cylinders (uniform centres in a cube, uniform axis directions, length in [1/2, 3/2], radius in\n"
+      "[1/20, 3/20]) in a cube sized so that each bounding box meets about --neighbours others, and a share\n"
+      "of exactly touching axis-parallel pairs with dyadic coordinates, named walls<j>a/b, caps<j>a/b,\n"
+      "crossing<j>a/b and capwall<j>a/b (wall to wall, cap to cap, crossing walls, cap on wall). The same\n"
+      "seed gives the same scene on every machine. Writes the scene JSON to standard output.");
+  make_scene->add_option("--cylinders", scene_spec.cylinders, "Number of cylinders (default 100000)");
+  make_scene->add_option("--seed", scene_spec.seed, "Random seed (default 1)");
+  make_scene->add_option("--neighbours", scene_spec.neighbours, "Mean number of boxes meeting a cylinder's box (default 8)");
+  make_scene->add_option("--touching", scene_spec.touching_share, "Share of cylinders in exactly touching pairs (default 0.02)");
 
   certcyl::cli::StudyOptions study_options;
   std::string shard;
@@ -129,9 +151,18 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
+  if (make_scene->parsed()) {
+    try {
+      std::cout << certcyl::cli::generate_scene(scene_spec).document.dump() << '\n';
+    } catch (const std::exception& e) {
+      std::cerr << "certcyl: " << e.what() << '\n';
+      return 1;
+    }
+    return std::cout ? 0 : 1;
+  }
   if (scene->parsed()) {
     if (scene_threads == 0) scene_threads = std::max(1u, std::thread::hardware_concurrency());
-    return certcyl::cli::run_scene(scene_file, std::cout, scene_threads, scene_progress || isatty(2));
+    return certcyl::cli::run_scene(scene_file, std::cout, scene_threads, scene_progress || isatty(2), scene_stats, std::cerr);
   }
   return 0;
 }

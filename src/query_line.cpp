@@ -1,8 +1,9 @@
 // Line, ray and segment against circular and elliptic cylinders.
 //
 // Methods: certified (exact endpoints a + b sqrt(c), correctly rounded doubles), shene and
-// gullotti (the seeds' methods, generic: --nt), gullotti_as_written (the seed's tangency rule
-// unchanged), robust_double (cancellation-free discriminant, stable roots, FMA).
+// gullotti (the seeds' methods, generic: --nt), shene_as_written (the text's "r < |d|"
+// unchanged), gullotti_as_written (the seed's tangency rule unchanged), robust_double
+// (cancellation-free discriminant, stable roots, FMA).
 #include "certcyl/certified/line_cylinder.hpp"
 #include "certcyl/io/json_input.hpp"
 #include "certcyl/robust/line_cylinder.hpp"
@@ -89,6 +90,7 @@ ojson answer_line_query(const LineLike& x, const Solid& solid, bool all_binary64
   }
   // The seeds' generic methods, in the number type of --nt.
   ojson interval;
+  std::string note;
   ojson out = run_in_number_type(options, all_binary64, false, [&]<class NT>() -> Answer {
     if constexpr (!has_sqrt_field<NT>) {
       throw InvalidInput("nt", "method " + m + " needs a square root and division; " + options.nt.name() +
@@ -97,8 +99,11 @@ ojson answer_line_query(const LineLike& x, const Solid& solid, bool all_binary64
       const auto xn = convert<NT>(x);
       const auto sn = convert<NT>(solid);
       LineInterval<NT> r;
-      if (m == "shene") {
-        if constexpr (std::is_same_v<Solid, Cylinder<Rational>>) r = shene_line_cylinder(xn, sn);
+      if (m == "shene" || m == "shene_as_written") {
+        const auto variant = m == "shene" ? SheneVariant::corrected : SheneVariant::as_written;
+        if constexpr (std::is_same_v<Solid, Cylinder<Rational>>) r = shene_line_cylinder(xn, sn, variant);
+        if (r.answer == Answer::overlapping && !r.in)
+          note = "the text's two points are not real: (r^2 - d^2) / (1 - (u.v)^2) < 0; no endpoints";
       } else {
         const auto variant = m == "gullotti_as_written" ? GullottiVariant::as_written : GullottiVariant::corrected;
         r = gullotti_any(xn, sn, variant);
@@ -108,6 +113,7 @@ ojson answer_line_query(const LineLike& x, const Solid& solid, bool all_binary64
     }
   });
   if (out["answer"] != "undecided") out["interval"] = interval;
+  if (!note.empty()) out["note"] = note;
   return out;
 }
 
@@ -116,7 +122,10 @@ void register_kind(std::map<std::string, QueryKind>& kinds, const std::string& n
                    LineLike (JsonReader::*read_line)(const json&, const std::string&), const char* solid_field,
                    Solid (JsonReader::*read_solid)(const json&, const std::string&)) {
   std::vector<std::string> methods{"certified", "robust_double", "gullotti", "gullotti_as_written"};
-  if constexpr (std::is_same_v<Solid, Cylinder<Rational>>) methods.push_back("shene");
+  if constexpr (std::is_same_v<Solid, Cylinder<Rational>>) {
+    methods.push_back("shene");
+    methods.push_back("shene_as_written");
+  }
   kinds[name] = {name, methods, [=](const json& in, const QueryOptions& o) {
                    JsonReader reader;
                    const LineLike x = (reader.*read_line)(JsonReader::member(in, "", line_field), line_field);

@@ -16,12 +16,15 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -30,6 +33,9 @@
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <CGAL/version.h>
 
@@ -442,52 +448,101 @@ struct MapSpec {
   std::string name, family, description;
   Query query;
   std::size_t c0, c1;  // the perturbed coordinates
+  // When set (the aligned families, whose axis is a random coordinate axis): c0 and c1 are
+  // offsets into the point at `c0`, replaced by its two coordinates across the axis of the
+  // cylinder at this offset, so the map moves the point off the wall and not along the axis.
+  std::size_t across_cylinder_at = std::numeric_limits<std::size_t>::max();
 };
 
+// One map per query, each around a degenerate configuration of one of its families (k = 0).
 std::vector<MapSpec> map_specs() {
   return {{"tangent_line", "tangent_rotated", "line tangent to the wall; origin x and y perturbed", Query::line_cylinder, 0, 1},
           {"rim_line", "rim_rotated", "line grazing the rim at p1; origin x and y perturbed", Query::line_cylinder, 0, 1},
+          {"ray_ends_on_wall", "ends_on_wall", "ray starting on the wall, pointing out; origin perturbed across the axis",
+           Query::ray_cylinder, 0, 0, 6},
+          {"segment_ends_on_wall", "ends_on_wall", "segment from outside ending on the wall; p1 perturbed across the axis",
+           Query::segment_cylinder, 3, 0, 6},
+          {"elliptic_tangent", "e_tangent_oblique", "line tangent to a sheared elliptic cylinder; origin x and z perturbed",
+           Query::line_elliptic_cylinder, 0, 2},
+          {"triangle_edge_wall", "t_edge_rotated", "triangle edge tangent to the wall; vertex v0 x and y perturbed",
+           Query::triangle_cylinder, 0, 1},
           {"touching_cylinders", "c_crossing_rotated", "crossing cylinders touching wall to wall; b.p0 x and y perturbed",
            Query::cylinder_cylinder, 7, 8}};
 }
 
+// Every method of the query but the certified one; slow ones on a sub-grid (Effort).
 void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs::path& dir) {
   const fs::path maps = dir / "failure_maps";
   fs::create_directories(maps);
   const auto families = all_families();
-  for (const MapSpec& spec : map_specs()) {
+  for (MapSpec spec : map_specs()) {
     const Family* fam = nullptr;
     for (const Family& f : families)
-      if (f.name == spec.family) fam = &f;
+      if (f.name == spec.family && std::find(f.queries.begin(), f.queries.end(), spec.query) != f.queries.end()) fam = &f;
+    if (!fam) throw std::logic_error("failure map " + spec.name + ": no family " + spec.family);
     Rng rng(mix(o.seed, hash_string(spec.name)));
     const std::vector<double> base = fam->make(rng, spec.query, 0).x;
+    if (spec.across_cylinder_at != std::numeric_limits<std::size_t>::max()) {
+      const std::size_t point = spec.c0, cyl = spec.across_cylinder_at;
+      std::array<std::size_t, 3> order{0, 1, 2};
+      std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return std::fabs(base[cyl + 3 + a] - base[cyl + a]) < std::fabs(base[cyl + 3 + b] - base[cyl + b]);
+      });
+      spec.c0 = point + std::min(order[0], order[1]);
+      spec.c1 = point + std::max(order[0], order[1]);
+    }
     std::vector<const Method*> methods;
     for (const Method& m : registry)
-      if (m.query == spec.query && m.cheap && m.stride == 1 && m.kind != MethodKind::certified && keep_name(o.methods, m.name()))
-        methods.push_back(&m);
+      if (m.query == spec.query && m.kind != MethodKind::certified && keep_name(o.methods, m.name())) methods.push_back(&m);
     const int n = o.map_cells;
-    std::vector<std::string> lines(static_cast<std::size_t>(n) * n);
-    Progress progress(o.progress, spec.name, lines.size());
-    parallel_for(lines.size(), o.threads, [&](std::size_t cell) {
+    // A method with map_stride s runs on the rows and columns i with i = n/2 (mod s): the
+    // centre cell, the degenerate configuration itself, is always among them.
+    auto evaluated = [n](const Method& m, long i, long j) {
+      const long s = static_cast<long>(std::max(1u, m.effort.map_stride));
+      return (i - n / 2) % s == 0 && (j - n / 2) % s == 0;
+    };
+    const std::size_t cells = static_cast<std::size_t>(n) * n;
+    std::vector<std::string> lines(cells), codes(cells, std::string(methods.size(), '.'));
+    auto cell_input = [&](std::size_t cell) {
+      const long i = static_cast<long>(cell) / n, j = static_cast<long>(cell) % n;
+      std::vector<double> x = base;
+      x[spec.c0] = ulp_step(base[spec.c0], (i - n / 2) * o.map_step);
+      x[spec.c1] = ulp_step(base[spec.c1], (j - n / 2) * o.map_step);
+      return x;
+    };
+    Progress progress(o.progress, spec.name, cells);
+    parallel_for(cells, o.threads, [&](std::size_t cell) {
       const long i = static_cast<long>(cell) / n, j = static_cast<long>(cell) % n;
       const long d0 = (i - n / 2) * o.map_step, d1 = (j - n / 2) * o.map_step;
       Instance inst;
       inst.query = spec.query;
-      inst.x = base;
-      inst.x[spec.c0] = ulp_step(base[spec.c0], d0);
-      inst.x[spec.c1] = ulp_step(base[spec.c1], d1);
+      inst.x = cell_input(cell);
       certify(inst);
-      std::string line = std::to_string(i) + "," + std::to_string(j) + "," + std::to_string(d0) + "," + std::to_string(d1) + "," +
-                         std::string(1, answer_code(three_valued(inst.certified))) + "," + num(inst.gap_lo) + "," + num(inst.gap_hi);
-      for (const Method* m : methods) line += std::string(",") + answer_code(run_quiet(*m, inst.x));
-      lines[cell] = line;
+      lines[cell] = std::to_string(i) + "," + std::to_string(j) + "," + std::to_string(d0) + "," + std::to_string(d1) + "," +
+                    std::string(1, answer_code(three_valued(inst.certified))) + "," + num(inst.gap_lo) + "," + num(inst.gap_hi);
+      for (std::size_t k = 0; k < methods.size(); ++k)
+        if (!methods[k]->serial && evaluated(*methods[k], i, j)) codes[cell][k] = answer_code(run_quiet(*methods[k], inst.x));
       progress.tick();
     });
+    // The serial methods, on this thread only (see Method::serial).
+    for (std::size_t k = 0; k < methods.size(); ++k) {
+      if (!methods[k]->serial) continue;
+      for (std::size_t cell = 0; cell < cells; ++cell)
+        if (evaluated(*methods[k], static_cast<long>(cell) / n, static_cast<long>(cell) % n))
+          codes[cell][k] = answer_code(run_quiet(*methods[k], cell_input(cell)));
+    }
     std::ofstream csv(maps / (spec.name + ".csv"));
     csv << "i,j,d0_ulps,d1_ulps,certified,gap_lo,gap_hi";
     for (const Method* m : methods) csv << ',' << m->name();
     csv << '\n';
-    for (const auto& l : lines) csv << l << '\n';
+    for (std::size_t cell = 0; cell < cells; ++cell) {
+      csv << lines[cell];
+      for (char c : codes[cell]) csv << ',' << c;
+      csv << '\n';
+    }
+    nlohmann::ordered_json strides = nlohmann::ordered_json::object();
+    for (const Method* m : methods)
+      if (m->effort.map_stride > 1) strides[m->name()] = m->effort.map_stride;
     nlohmann::ordered_json meta{{"name", spec.name},
                                 {"query", std::string(to_string(spec.query))},
                                 {"description", spec.description},
@@ -495,36 +550,107 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
                                 {"perturbed_coordinates", {spec.c0, spec.c1}},
                                 {"cells", n},
                                 {"ulps_per_cell", o.map_step},
-                                {"codes", "s separated, t touching, o overlapping, i intersecting (boolean methods), u undecided, e error"}};
+                                {"map_strides", strides},
+                                {"codes", "s separated, t touching, o overlapping, i intersecting (boolean methods), u undecided, e error, "
+                                          ". not evaluated (a slow method runs on every map_stride-th row and column through the centre)"}};
     std::ofstream(maps / (spec.name + ".json")) << meta.dump(2) << '\n';
   }
 }
 
 // ---- Failure hunting --------------------------------------------------------------------------
 
+// Runs `hunt(trace)` in a child process; returns its hunt.csv line, or, when the child did not
+// finish, a line naming the input it was evaluating when it ended.
+std::string hunt_in_child(const Method& m, const std::function<std::string(const std::function<void(const std::string&)>&)>& hunt) {
+  int fds[2];
+  if (pipe(fds) != 0) return hunt({});
+  std::cout.flush(), std::cerr.flush();
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(fds[0]), close(fds[1]);
+    return hunt({});
+  }
+  if (pid == 0) {
+    close(fds[0]);
+    auto send = [&](const std::string& msg) {
+      const std::string data = msg + '\n';
+      for (std::size_t done = 0; done < data.size();) {
+        const ssize_t n = write(fds[1], data.data() + done, data.size() - done);
+        if (n <= 0) _exit(3);
+        done += static_cast<std::size_t>(n);
+      }
+    };
+    const std::string line = hunt(send);
+    send("L " + line);
+    close(fds[1]);
+    _exit(0);
+  }
+  close(fds[1]);
+  std::string received;
+  char buf[4096];
+  for (ssize_t n; (n = read(fds[0], buf, sizeof buf)) != 0;) {
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      break;
+    }
+    received.append(buf, static_cast<std::size_t>(n));
+  }
+  close(fds[0]);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  std::string family, input, result;
+  long evaluations = 0;
+  std::istringstream lines(received);
+  for (std::string l; std::getline(lines, l);) {
+    if (l.rfind("F ", 0) == 0) family = l.substr(2);
+    if (l.rfind("X ", 0) == 0) input = l.substr(2), ++evaluations;
+    if (l.rfind("L ", 0) == 0) result = l.substr(2);
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && !result.empty()) return result;
+  std::ostringstream line;
+  line << m.name() << ',' << to_string(m.query) << ',' << family << ',' << evaluations << ',';
+  if (input.empty()) {
+    line << "0,,,,,,";
+    return line.str();
+  }
+  Instance inst;
+  inst.query = m.query;
+  std::istringstream hex(input);
+  for (std::string v; hex >> v;) inst.x.push_back(std::strtod(v.c_str(), nullptr));
+  certify(inst);
+  line << "1,process_ended," << to_string(inst.certified) << ",error," << num(inst.gap_lo) << ',' << num(inst.gap_hi) << ',' << input;
+  return line.str();
+}
+
 // For each method: random restarts at the degenerate configurations of its query's families
 // (k = 0), then a local search over ulp perturbations of single coordinates (each coordinate
 // kept within 2^-6 of its start, relative to the largest input coordinate) that keeps the
 // method wrong (false positive or false negative) while pushing the certified lower bound of
 // |gap| up. The result is the wrong answer farthest from any degeneracy that the search found.
+// Every method but the certified one is hunted; a slow one gets 1/hunt_divisor of the budget.
 void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& dir) {
   std::vector<const Method*> methods;
   for (std::size_t i = 0; i < registry.size(); ++i) {
     const Method& m = registry[i];
-    if (m.cheap && m.kind != MethodKind::certified && keep_name(o.methods, m.name()) &&
+    if (m.kind != MethodKind::certified && keep_name(o.methods, m.name()) &&
         static_cast<int>(i % o.shard_count) == o.shard_index)
       methods.push_back(&m);
   }
   const auto families = all_families();
   std::vector<std::string> lines(methods.size());
   Progress progress(o.progress, "hunting", methods.size());
-  parallel_for(methods.size(), o.threads, [&](std::size_t mi) {
+  // `trace`, when set, hears of each start family ("F name") and of each input before the
+  // method runs on it ("X hexfloats"): the parent of a hunt run in a child process learns
+  // which input ended the process.
+  auto hunt_one = [&](std::size_t mi, const std::function<void(const std::string&)>& trace) {
     const Method& m = *methods[mi];
     std::vector<const Family*> starts;
     for (const Family& f : families)
       if (std::find(f.queries.begin(), f.queries.end(), m.query) != f.queries.end() && f.name != "uniform") starts.push_back(&f);
     Rng rng(mix(o.seed, hash_string(m.name() + std::string(to_string(m.query)))));
-    const long budget = m.query == Query::cylinder_cylinder ? std::max(1L, o.hunt_evaluations / 4) : o.hunt_evaluations;
+    const long query_budget = m.query == Query::cylinder_cylinder ? std::max(1L, o.hunt_evaluations / 4) : o.hunt_evaluations;
+    const long budget = std::max(1L, query_budget / static_cast<long>(std::max(1u, m.effort.hunt_divisor)));
     const long restarts = std::max(1L, budget / 50);
     long evaluations = 0;
     double best_score = -std::numeric_limits<double>::infinity();
@@ -535,6 +661,7 @@ void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& d
       ++evaluations;
       certify(inst);
       if (inst.certified == Answer::undecided) return -std::numeric_limits<double>::infinity();
+      if (trace) trace("X " + x_hex(inst.x));
       out = run_quiet(m, inst.x);
       if (!disagrees(judge(out, inst.certified))) return -std::numeric_limits<double>::infinity();
       // The certified lower bound of |gap| (0 when the enclosure contains 0).
@@ -546,6 +673,7 @@ void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& d
       Instance cur;
       cur.query = m.query;
       cur.x = f->make(rng, m.query, 0).x;
+      if (trace) trace("F " + f->name);
       const std::vector<double> start = cur.x;
       double scale = 0;
       for (double v : start) scale = std::max(scale, std::fabs(v));
@@ -582,8 +710,25 @@ void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& d
     else
       line << ",,,,,,";
     lines[mi] = line.str();
+  };
+  // The parallel methods on the threads, then the serial ones on this thread only, each in a
+  // child process: CORE::Expr ends the process (abort, or exit(1) from its BigFloat division)
+  // on some inputs the hunt reaches, tiny non-zero components among them (experiments/STUDY.md).
+  // The worst input is then the one that ended the process (answer process_ended, outcome
+  // error). No other thread runs when the child is forked.
+  std::vector<std::size_t> parallel_ones, serial_ones;
+  for (std::size_t mi = 0; mi < methods.size(); ++mi) (methods[mi]->serial ? serial_ones : parallel_ones).push_back(mi);
+  parallel_for(parallel_ones.size(), o.threads, [&](std::size_t k) {
+    hunt_one(parallel_ones[k], {});
     progress.tick();
   });
+  for (std::size_t mi : serial_ones) {
+    lines[mi] = hunt_in_child(*methods[mi], [&](const std::function<void(const std::string&)>& trace) {
+      hunt_one(mi, trace);
+      return lines[mi];
+    });
+    progress.tick();
+  }
   std::sort(lines.begin(), lines.end());  // the order of a merge of shards
   std::ofstream csv(dir / "hunt.csv");
   csv << "method,query,start_family,evaluations,found,answer,certified_answer,outcome,gap_lo,gap_hi,input_hex\n";
@@ -685,29 +830,45 @@ int run_study(StudyOptions o, std::ostream& out) {
 
   std::vector<Planned> plan = plan_instances(o);
   std::vector<std::vector<Row>> rows(plan.size());
+  auto evaluate = [&](Planned& p, const Method& m) {
+    const Instance& inst = p.inst;
+    // The slow types run on a pseudo-random 1/stride of each family (not every stride-th
+    // index, which would pick the k = 0 instances: ulp_offset makes every 8th one k = 0).
+    if (m.query != inst.query || (mix(0, p.index_in_family) >> 32) % m.stride != 0 || !keep_name(o.methods, m.name())) return;
+    const auto [res, ns] = timed(m, inst.x);
+    Row r;
+    r.family = inst.family, r.query = std::string(to_string(inst.query)), r.instance = inst.id, r.k = p.k;
+    r.expected = std::string(to_string(inst.expected));
+    r.method = m.name(), r.base = m.base, r.nt = m.nt, r.kind = std::string(to_string(m.kind));
+    r.answer = answer_label(res), r.certified = std::string(to_string(inst.certified)), r.outcome = outcome_of(res, inst);
+    r.gap_lo = inst.gap_lo, r.gap_hi = inst.gap_hi, r.ns = ns;
+    if (is_line_query(inst.query) && !res.intersecting && intersects(res.answer) && intersects(inst.certified) &&
+        std::isfinite(res.t_in) && std::isfinite(inst.t_in))
+      r.t_error = t_error_ulps(res.t_in, inst.t_in);
+    rows[&p - plan.data()].push_back(std::move(r));
+  };
   Progress progress(o.progress, "instances", plan.size());
   parallel_for(plan.size(), o.threads, [&](std::size_t pi) {
-    Planned& p = plan[pi];
-    Instance& inst = p.inst;
-    certify(inst);
-    for (const Method& m : registry) {
-      // The slow types run on a pseudo-random 1/stride of each family (not every stride-th
-      // index, which would pick the k = 0 instances: ulp_offset makes every 8th one k = 0).
-      if (m.query != inst.query || (mix(0, p.index_in_family) >> 32) % m.stride != 0 || !keep_name(o.methods, m.name())) continue;
-      const auto [res, ns] = timed(m, inst.x);
-      Row r;
-      r.family = inst.family, r.query = std::string(to_string(inst.query)), r.instance = inst.id, r.k = p.k;
-      r.expected = std::string(to_string(inst.expected));
-      r.method = m.name(), r.base = m.base, r.nt = m.nt, r.kind = std::string(to_string(m.kind));
-      r.answer = answer_label(res), r.certified = std::string(to_string(inst.certified)), r.outcome = outcome_of(res, inst);
-      r.gap_lo = inst.gap_lo, r.gap_hi = inst.gap_hi, r.ns = ns;
-      if (is_line_query(inst.query) && !res.intersecting && intersects(res.answer) && intersects(inst.certified) &&
-          std::isfinite(res.t_in) && std::isfinite(inst.t_in))
-        r.t_error = t_error_ulps(res.t_in, inst.t_in);
-      rows[pi].push_back(std::move(r));
-    }
+    certify(plan[pi].inst);
+    for (const Method& m : registry)
+      if (!m.serial) evaluate(plan[pi], m);
     progress.tick();
   });
+  // The serial methods, on this thread only (see Method::serial), in registry order per instance.
+  Progress serial_progress(o.progress, "instances (serial)", plan.size());
+  for (Planned& p : plan) {
+    std::vector<Row> parallel_rows = std::move(rows[&p - plan.data()]);
+    rows[&p - plan.data()].clear();
+    std::size_t next_parallel = 0;
+    for (const Method& m : registry) {
+      if (m.serial) {
+        evaluate(p, m);
+      } else if (m.query == p.inst.query && next_parallel < parallel_rows.size() && parallel_rows[next_parallel].method == m.name()) {
+        rows[&p - plan.data()].push_back(std::move(parallel_rows[next_parallel++]));
+      }
+    }
+    serial_progress.tick();
+  }
   {
     std::ofstream csv(dir / "instances.csv");
     csv << kRowHeader << '\n';
@@ -737,6 +898,83 @@ int run_study(StudyOptions o, std::ostream& out) {
   return 0;
 }
 
+namespace {
+
+// The shards of a study folder, checked: each shard-* folder holds a machine.json whose
+// "shard" is i/n (the folder's name is not trusted: a copied folder is a duplicate); every
+// shard shares one n, one configuration (every option but the shard, the thread count and the
+// name) and one build (commit, compiler, flags, CGAL, peer libraries); each of
+// 0..n-1 is there exactly once. Throws std::runtime_error naming what differs or is missing.
+std::vector<fs::path> checked_shards(const fs::path& dir, std::vector<fs::path> shards, nlohmann::json& machine) {
+  std::sort(shards.begin(), shards.end());
+  struct Seen {
+    fs::path path;
+    nlohmann::json machine;
+  };
+  std::vector<Seen> seen;
+  for (const fs::path& s : shards) {
+    std::ifstream in(s / "machine.json");
+    if (!in) throw std::runtime_error("merge: " + s.string() + ": no machine.json (an unfinished or foreign shard?)");
+    Seen entry{s, nlohmann::json::parse(in, nullptr, false)};
+    if (entry.machine.is_discarded() || !entry.machine.contains("options") || !entry.machine["options"].contains("shard"))
+      throw std::runtime_error("merge: " + (s / "machine.json").string() + ": not a study's machine.json");
+    seen.push_back(std::move(entry));
+  }
+  const Seen& first = seen.front();
+  auto where = [](const Seen& e) { return e.path.filename().string(); };
+  int count = -1;
+  std::map<int, std::vector<std::string>> by_index;
+  for (const Seen& e : seen) {
+    int index = 0, n = 0;
+    const std::string shard = e.machine["options"]["shard"].get<std::string>();
+    try {
+      parse_shard(shard, index, n);
+    } catch (const std::exception&) {
+      throw std::runtime_error("merge: " + where(e) + ": machine.json has shard '" + shard + "'");
+    }
+    if (count >= 0 && n != count)
+      throw std::runtime_error("merge: shards of different counts: " + where(first) + " is one of " + std::to_string(count) + ", " + where(e) +
+                               " one of " + std::to_string(n));
+    count = n;
+    by_index[index].push_back(where(e));
+    // The configuration and the build must be the same.
+    for (const char* key : {"commit", "compiler", "flags", "cgal", "peers"})
+      if (e.machine.value(key, nlohmann::json()) != first.machine.value(key, nlohmann::json()))
+        throw std::runtime_error(std::string("merge: shards from different builds: ") + key + " is " + first.machine.value(key, nlohmann::json()).dump() +
+                                 " in " + where(first) + " but " + e.machine.value(key, nlohmann::json()).dump() + " in " + where(e));
+    const nlohmann::json& a = first.machine["options"];
+    const nlohmann::json& b = e.machine["options"];
+    std::set<std::string> keys;
+    for (const auto& [k, v] : a.items()) keys.insert(k);
+    for (const auto& [k, v] : b.items()) keys.insert(k);
+    for (const std::string& k : keys) {
+      if (k == "shard" || k == "threads" || k == "name") continue;
+      const nlohmann::json va = a.value(k, nlohmann::json()), vb = b.value(k, nlohmann::json());
+      if (va != vb)
+        throw std::runtime_error("merge: shards of different configurations: " + k + " is " + va.dump() + " in " + where(first) + " but " +
+                                 vb.dump() + " in " + where(e));
+    }
+  }
+  std::string missing, duplicate;
+  for (int i = 0; i < count; ++i) {
+    const auto it = by_index.find(i);
+    if (it == by_index.end()) missing += (missing.empty() ? "" : ", ") + std::to_string(i);
+  }
+  for (const auto& [i, folders] : by_index) {
+    if (folders.size() < 2) continue;
+    duplicate += std::string(duplicate.empty() ? "" : "; ") + std::to_string(i) + " (";
+    for (std::size_t k = 0; k < folders.size(); ++k) duplicate += (k ? ", " : "") + folders[k];
+    duplicate += ")";
+  }
+  if (!missing.empty())
+    throw std::runtime_error("merge: missing shard(s) " + missing + " of " + std::to_string(count) + " in " + dir.string());
+  if (!duplicate.empty()) throw std::runtime_error("merge: duplicate shard(s) " + duplicate + " in " + dir.string());
+  machine = first.machine;
+  return shards;
+}
+
+}  // namespace
+
 int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
   const fs::path dir(dir_name);
   std::vector<fs::path> shards;
@@ -747,11 +985,12 @@ int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
     out << "merge: no shard-*-of-* folders in " << dir_name << '\n';
     return 1;
   }
+  nlohmann::json machine;
+  shards = checked_shards(dir, std::move(shards), machine);
   std::sort(shards.begin(), shards.end());
   // Instances and inputs in instance order; hunting lines in method order; maps from shard 0.
   std::vector<std::pair<std::uint64_t, std::string>> rows, inputs;
   std::vector<std::string> hunt;
-  nlohmann::json machine;
   for (const fs::path& s : shards) {
     auto read = [&](const char* file, std::vector<std::pair<std::uint64_t, std::string>>& into, std::size_t id_field) {
       std::ifstream in(s / file);
@@ -767,8 +1006,6 @@ int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
     std::getline(h, line);
     while (std::getline(h, line)) hunt.push_back(line);
     if (fs::exists(s / "failure_maps")) fs::copy(s / "failure_maps", dir / "failure_maps", fs::copy_options::recursive | fs::copy_options::overwrite_existing);
-    std::ifstream m(s / "machine.json");
-    if (m && machine.is_null()) machine = nlohmann::json::parse(m);
   }
   std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::stable_sort(inputs.begin(), inputs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -784,6 +1021,7 @@ int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
     h << "method,query,start_family,evaluations,found,answer,certified_answer,outcome,gap_lo,gap_hi,input_hex\n";
     for (const auto& l : hunt) h << l << '\n';
     machine["merged_shards"] = shards.size();
+    machine["options"]["shard"] = "merged";
     std::ofstream(dir / "machine.json") << machine.dump(2) << '\n';
   }
   out << write_summary(dir);

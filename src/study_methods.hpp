@@ -10,18 +10,20 @@
 
 namespace certcyl::cli {
 
-// The number types every generic method runs in, with the stride of the slow ones.
+// The number types every generic method runs in, with the stride of the slow ones on the
+// instances and their effort in the failure maps and hunting (line and triangle queries, one
+// call ~13 us in Gmpfr and ~50-150 us in CORE::Expr: maps on every 2nd and 4th row and column).
 struct NumberTypeChoice {
   NumberTypeSpec spec;
   unsigned stride = 1;
-  bool cheap = true;
+  study::Effort effort{};
 };
 
 inline std::vector<NumberTypeChoice> generic_number_types() {
-  return {{{NumberKind::double_, 53}, 1, true},     {{NumberKind::long_double, 64}, 1, true},
-          {{NumberKind::interval, 53}, 1, true},    {{NumberKind::gmpfr, 24}, 2, true},
-          {{NumberKind::gmpfr, 53}, 2, false},      {{NumberKind::gmpfr, 113}, 2, false},
-          {{NumberKind::gmpfr, 256}, 2, false},     {{NumberKind::core_expr, 53}, 8, false}};
+  return {{{NumberKind::double_, 53}, 1, {1, 1}},     {{NumberKind::long_double, 64}, 1, {1, 1}},
+          {{NumberKind::interval, 53}, 1, {1, 1}},    {{NumberKind::gmpfr, 24}, 2, {2, 1}},
+          {{NumberKind::gmpfr, 53}, 2, {2, 1}},       {{NumberKind::gmpfr, 113}, 2, {2, 1}},
+          {{NumberKind::gmpfr, 256}, 2, {2, 1}},      {{NumberKind::core_expr, 53}, 8, {4, 2}}};
 }
 
 // A binary64 input in NT: itself for double and long double, correctly rounded to the
@@ -39,7 +41,7 @@ auto to_nt(const Prim& p) {
   return p.map([](double d) { return from_binary64<NT>(d); });
 }
 
-// Marks the methods that must not run concurrently (CORE::Expr).
+// Marks the methods that run one at a time on the main thread (CORE::Expr; see Method::serial).
 inline void mark_serial(study::Registry& r) {
   for (study::Method& m : r)
     if (m.nt == "core_expr") m.serial = true;

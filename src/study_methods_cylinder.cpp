@@ -33,23 +33,27 @@ void register_cylinder_methods(study::Registry& r) {
   using study::MethodKind;
   using study::Query;
   const Query q = Query::cylinder_cylinder;
-  r.push_back({"certified", "exact", MethodKind::certified, q, 1, true, [](const std::vector<double>& x) {
+  r.push_back({"certified", "exact", MethodKind::certified, q, 1, {}, [](const std::vector<double>& x) {
                  return study::three_valued(certified_cylinder_cylinder(study::cylinder_at(x, 0), study::cylinder_at(x, 7)).answer);
                }});
   // The seed: its iterative searches cost 10^2..10^4 times a line query in the slow types.
   for (const NumberTypeChoice& c : generic_number_types()) {
     const NumberTypeSpec spec = c.spec;
     const unsigned stride = spec.kind == NumberKind::core_expr ? 16 : (spec.kind == NumberKind::gmpfr ? 4 : c.stride);
-    const bool cheap = spec.kind == NumberKind::double_ || spec.kind == NumberKind::long_double;
-    r.push_back({"eberly_cylinders_as_written", spec.name(), MethodKind::seed_as_written, q, stride, cheap,
+    // Maps on every 4th (Gmpfr) and 16th (CORE::Expr) row and column: near touching, one call
+    // costs up to ~1 ms in Gmpfr and ~10 ms in CORE::Expr.
+    const study::Effort effort = spec.kind == NumberKind::core_expr ? study::Effort{16, 2}
+                                 : spec.kind == NumberKind::gmpfr   ? study::Effort{4, 1}
+                                                                    : study::Effort{1, 1};
+    r.push_back({"eberly_cylinders_as_written", spec.name(), MethodKind::seed_as_written, q, stride, effort,
                  [spec](const std::vector<double>& x) { return run_eberly(spec, EberlyParameters::as_written(), x); }});
-    r.push_back({"eberly_cylinders", spec.name(), MethodKind::seed_corrected, q, stride, cheap,
+    r.push_back({"eberly_cylinders", spec.name(), MethodKind::seed_corrected, q, stride, effort,
                  [spec](const std::vector<double>& x) { return run_eberly(spec, EberlyParameters::corrected(), x); }});
   }
   // Sweeps of the tolerance choices, corrected variant in double.
   const NumberTypeSpec dbl{NumberKind::double_, 53};
   auto sweep = [&](const std::string& label, EberlyParameters p) {
-    r.push_back({"eberly_cylinders[" + label + "]", "double", MethodKind::sweep, q, 1, false,
+    r.push_back({"eberly_cylinders[" + label + "]", "double", MethodKind::sweep, q, 1, {},
                  [dbl, p](const std::vector<double>& x) { return run_eberly(dbl, p, x); }});
   };
   for (int n : {2, 4, 8, 16, 64}) {

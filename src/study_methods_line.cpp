@@ -1,5 +1,5 @@
 // The study's methods for line, ray and segment queries: the certified query, the robust double
-// method, and the seeds (Shene; Gullotti as written and corrected) in every generic number type.
+// method, and the seeds (Shene and Gullotti, each as written and corrected) in every generic number type.
 #include "certcyl/certified/line_cylinder.hpp"
 #include "certcyl/robust/line_cylinder.hpp"
 #include "certcyl/seeds/gullotti_line_elliptic_cylinder.hpp"
@@ -32,7 +32,7 @@ decltype(auto) with_line_primitives(Query q, const std::vector<double>& x, F&& f
   }
 }
 
-enum class Seed { shene, gullotti_as_written, gullotti };
+enum class Seed { shene_as_written, shene, gullotti_as_written, gullotti };
 
 template <class NT>
 MethodOutput run_seed(Seed seed, Query q, const std::vector<double>& x) {
@@ -40,8 +40,9 @@ MethodOutput run_seed(Seed seed, Query q, const std::vector<double>& x) {
     const auto ln = to_nt<NT>(l);
     const auto sn = to_nt<NT>(s);
     using Solid = std::decay_t<decltype(sn)>;
-    if (seed == Seed::shene) {
-      if constexpr (std::is_same_v<Solid, Cylinder<NT>>) return from_interval(shene_line_cylinder(ln, sn));
+    if (seed == Seed::shene || seed == Seed::shene_as_written) {
+      const auto v = seed == Seed::shene ? SheneVariant::corrected : SheneVariant::as_written;
+      if constexpr (std::is_same_v<Solid, Cylinder<NT>>) return from_interval(shene_line_cylinder(ln, sn, v));
       throw std::logic_error("shene has no elliptic form");
     }
     const auto v = seed == Seed::gullotti_as_written ? GullottiVariant::as_written : GullottiVariant::corrected;
@@ -77,23 +78,26 @@ MethodOutput run_seed_in(const NumberTypeSpec& spec, Seed seed, Query q, const s
 void register_line_methods(study::Registry& r) {
   const Query lines[] = {Query::line_cylinder, Query::ray_cylinder, Query::segment_cylinder, Query::line_elliptic_cylinder};
   for (Query q : lines) {
-    r.push_back({"certified", "exact", MethodKind::certified, q, 1, true, [q](const std::vector<double>& x) {
+    r.push_back({"certified", "exact", MethodKind::certified, q, 1, {}, [q](const std::vector<double>& x) {
                    return with_line_primitives(q, x, [](const auto& l, const auto& s) {
                      const CertifiedLineResult c = certified_line_cylinder(l, s);
                      return study::three_valued(c.answer, c.in ? c.in->nearest : std::numeric_limits<double>::quiet_NaN());
                    });
                  }});
-    r.push_back({"robust", "double", MethodKind::robust, q, 1, true, [q](const std::vector<double>& x) {
+    r.push_back({"robust", "double", MethodKind::robust, q, 1, {}, [q](const std::vector<double>& x) {
                    return with_line_primitives(q, x, [](const auto& l, const auto& s) { return from_interval(robust_line_cylinder(l, s)); });
                  }});
     for (const NumberTypeChoice& c : generic_number_types()) {
       const NumberTypeSpec spec = c.spec;
-      if (q != Query::line_elliptic_cylinder)
-        r.push_back({"shene", spec.name(), MethodKind::seed_corrected, q, c.stride, c.cheap,
+      if (q != Query::line_elliptic_cylinder) {
+        r.push_back({"shene_as_written", spec.name(), MethodKind::seed_as_written, q, c.stride, c.effort,
+                     [=](const std::vector<double>& x) { return run_seed_in(spec, Seed::shene_as_written, q, x); }});
+        r.push_back({"shene", spec.name(), MethodKind::seed_corrected, q, c.stride, c.effort,
                      [=](const std::vector<double>& x) { return run_seed_in(spec, Seed::shene, q, x); }});
-      r.push_back({"gullotti_as_written", spec.name(), MethodKind::seed_as_written, q, c.stride, c.cheap,
+      }
+      r.push_back({"gullotti_as_written", spec.name(), MethodKind::seed_as_written, q, c.stride, c.effort,
                    [=](const std::vector<double>& x) { return run_seed_in(spec, Seed::gullotti_as_written, q, x); }});
-      r.push_back({"gullotti", spec.name(), MethodKind::seed_corrected, q, c.stride, c.cheap,
+      r.push_back({"gullotti", spec.name(), MethodKind::seed_corrected, q, c.stride, c.effort,
                    [=](const std::vector<double>& x) { return run_seed_in(spec, Seed::gullotti, q, x); }});
     }
   }

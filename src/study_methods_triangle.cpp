@@ -9,13 +9,13 @@ namespace certcyl::cli {
 void register_triangle_methods(study::Registry& r) {
   using study::MethodKind;
   using study::Query;
-  r.push_back({"certified", "exact", MethodKind::certified, Query::triangle_cylinder, 1, true, [](const std::vector<double>& x) {
+  r.push_back({"certified", "exact", MethodKind::certified, Query::triangle_cylinder, 1, {}, [](const std::vector<double>& x) {
                  FilterCounter counter;
                  return study::three_valued(classify_triangle_cylinder(study::triangle_at(x), study::cylinder_at(x, 9), counter));
                }});
   for (const NumberTypeChoice& c : generic_number_types()) {
     const NumberTypeSpec spec = c.spec;
-    r.push_back({"eberly_triangle", spec.name(), MethodKind::seed_as_written, Query::triangle_cylinder, c.stride, c.cheap,
+    r.push_back({"eberly_triangle", spec.name(), MethodKind::seed_as_written, Query::triangle_cylinder, c.stride, c.effort,
                  [spec](const std::vector<double>& x) {
                    return dispatch(spec, [&]<class NT>() -> study::MethodOutput {
                      if constexpr (NumberTraits<NT>::has_sqrt && NumberTraits<NT>::is_field) {

@@ -96,6 +96,33 @@ BOOST_AUTO_TEST_CASE(seed_methods_answer_in_the_requested_type) {
   BOOST_TEST(std::string(g[0]["error"]).rfind("nt:", 0) == 0);
 }
 
+BOOST_AUTO_TEST_CASE(shene_as_written_follows_the_printed_condition) {
+  // Lines along x at height 1 through (-5, y0, 1); the cylinder has radius 1 around the z axis.
+  // The distance between the line and the axis is |d| = |y0|. y0 = 0: r > |d|, the line crosses
+  // the wall at t = 4 and 6, but the printed "if r < |d|, two points" falls to "otherwise: no
+  // intersection". y0 = 3: r < |d|, the line misses, but the text claims two points, with
+  // x^2 = r^2 - d^2 = -8: overlapping without endpoints.
+  const std::string cyl = R"(, "cylinder": )" + unit + "}\n";
+  const std::string input = R"({"id": "through", "query": "line_cylinder", "line": {"origin": [-5,0,1], "direction": [1,0,0]})" + cyl +
+                            R"({"id": "miss", "query": "line_cylinder", "line": {"origin": [-5,3,1], "direction": [1,0,0]})" + cyl;
+  for (const char* nt : {"double", "core_expr"}) {
+    const auto w = run(input, "shene_as_written", nt);
+    BOOST_TEST_REQUIRE(w.size() == 2u);
+    BOOST_TEST(w[0]["id"] == "through");
+    BOOST_TEST(w[0]["answer"] == "separated");
+    BOOST_TEST(w[0]["interval"].empty());
+    BOOST_TEST(w[1]["answer"] == "overlapping");
+    BOOST_TEST(w[1]["interval"].empty());
+    BOOST_TEST(w[1].contains("note"));
+    BOOST_TEST(w[1]["method"] == "shene_as_written");
+    const auto c = run(input, "shene", nt);
+    BOOST_TEST(c[0]["answer"] == "overlapping");
+    BOOST_TEST(c[0]["interval"][0]["approx"] == 4.0);
+    BOOST_TEST(c[0]["interval"][1]["approx"] == 6.0);
+    BOOST_TEST(c[1]["answer"] == "separated");
+  }
+}
+
 BOOST_AUTO_TEST_CASE(triangle_in_a_cap_plane_touches) {
   // The triangle lies in the plane z = 2 of cap1 and covers the cap's centre: it meets the
   // cylinder only on its boundary.

@@ -247,6 +247,52 @@ BOOST_AUTO_TEST_CASE(tiny_study_end_to_end) {
   BOOST_TEST(lines_of(root / "sharded" / "inputs.csv") == lines_of(dir / "inputs.csv"));
   BOOST_TEST(lines_of(root / "sharded" / "hunt.csv").size() == hunt.size());
 
+  // merge refuses shards that do not belong together, naming what differs or is missing.
+  auto merge_error = [&](const fs::path& dir) -> std::string {
+    std::ostringstream o;
+    try {
+      cli::run_merge(dir.string(), false, o);
+    } catch (const std::runtime_error& e) {
+      return e.what();
+    }
+    return "merged";
+  };
+  auto copy_shard = [&](const std::string& shard, const fs::path& to) {
+    fs::create_directories(to.parent_path());
+    fs::copy(root / "sharded" / shard, to, fs::copy_options::recursive);
+  };
+  copy_shard("shard-0-of-2", root / "missing" / "shard-0-of-2");
+  const std::string missing = merge_error(root / "missing");
+  BOOST_TEST(missing.find("missing shard(s) 1 of 2") != std::string::npos, missing);
+  copy_shard("shard-0-of-2", root / "dup" / "shard-0-of-2");
+  copy_shard("shard-1-of-2", root / "dup" / "shard-1-of-2");
+  copy_shard("shard-1-of-2", root / "dup" / "shard-1-of-2-again");
+  const std::string dup = merge_error(root / "dup");
+  BOOST_TEST(dup.find("duplicate shard(s) 1 (shard-1-of-2, shard-1-of-2-again)") != std::string::npos, dup);
+  {
+    // Shard 1 of 2 with another seed: a different configuration.
+    copy_shard("shard-0-of-2", root / "seeds" / "shard-0-of-2");
+    cli::StudyOptions s = tiny(root, "seeds");
+    s.seed = 2;
+    s.shard_index = 1;
+    s.shard_count = 2;
+    std::ostringstream so;
+    BOOST_TEST_REQUIRE(cli::run_study(s, so) == 0);
+    const std::string seeds = merge_error(root / "seeds");
+    BOOST_TEST(seeds.find("different configurations: seed is 1 in shard-0-of-2 but 2 in shard-1-of-2") != std::string::npos, seeds);
+  }
+  {
+    // Shard 1 of 3 beside shard 0 of 2.
+    copy_shard("shard-0-of-2", root / "counts" / "shard-0-of-2");
+    cli::StudyOptions s = tiny(root, "counts");
+    s.shard_index = 1;
+    s.shard_count = 3;
+    std::ostringstream so;
+    BOOST_TEST_REQUIRE(cli::run_study(s, so) == 0);
+    const std::string counts = merge_error(root / "counts");
+    BOOST_TEST(counts.find("shards of different counts: shard-0-of-2 is one of 2, shard-1-of-3 one of 3") != std::string::npos, counts);
+  }
+
   // The figures, when /usr/bin/python3 has matplotlib.
   if (std::system("/usr/bin/python3 -c 'import matplotlib, numpy' >/dev/null 2>&1") == 0) {
     const std::string cmd = "/usr/bin/python3 '" CERTCYL_TEST_SOURCE_DIR "/experiments/plot_study.py' '" + dir.string() + "' >/dev/null";

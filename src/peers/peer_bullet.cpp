@@ -88,11 +88,11 @@ std::string register_bullet_methods(study::Registry& r) {
   using study::Query;
   for (bool margin : {true, false}) {
     const std::string base = margin ? "bullet" : "bullet_margin0";
-    r.push_back({base, "float", MethodKind::peer, Query::cylinder_cylinder, 1, true,
+    r.push_back({base, "float", MethodKind::peer, Query::cylinder_cylinder, 1, {},
                  [margin](const std::vector<double>& x) { return study::boolean_answer(bullet_cylinders(x, margin)); }});
-    r.push_back({base, "float", MethodKind::peer, Query::ray_cylinder, 1, true,
+    r.push_back({base, "float", MethodKind::peer, Query::ray_cylinder, 1, {},
                  [margin](const std::vector<double>& x) { return study::boolean_answer(bullet_ray(x, false, margin)); }});
-    r.push_back({base, "float", MethodKind::peer, Query::segment_cylinder, 1, true,
+    r.push_back({base, "float", MethodKind::peer, Query::segment_cylinder, 1, {},
                  [margin](const std::vector<double>& x) { return study::boolean_answer(bullet_ray(x, true, margin)); }});
   }
   return "Bullet " + std::to_string(BT_BULLET_VERSION);

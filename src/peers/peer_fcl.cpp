@@ -35,11 +35,11 @@ bool collide(const fcl::CollisionGeometryd* a, const fcl::Transform3d& ta, const
 std::string register_fcl_methods(study::Registry& r) {
   using study::MethodKind;
   using study::Query;
-  r.push_back({"fcl", "double", MethodKind::peer, Query::cylinder_cylinder, 1, true, [](const std::vector<double>& x) {
+  r.push_back({"fcl", "double", MethodKind::peer, Query::cylinder_cylinder, 1, {}, [](const std::vector<double>& x) {
                  const FclCylinder a = fcl_cylinder(study::cylinder_at(x, 0)), b = fcl_cylinder(study::cylinder_at(x, 7));
                  return study::boolean_answer(collide(a.shape.get(), a.pose, b.shape.get(), b.pose));
                }});
-  r.push_back({"fcl_mesh", "double", MethodKind::peer, Query::triangle_cylinder, 1, true, [](const std::vector<double>& x) {
+  r.push_back({"fcl_mesh", "double", MethodKind::peer, Query::triangle_cylinder, 1, {}, [](const std::vector<double>& x) {
                  const Triangle<double> t = study::triangle_at(x);
                  auto v = [](const Vec3<double>& p) { return fcl::Vector3d(p.x, p.y, p.z); };
                  fcl::BVHModel<fcl::OBBRSSd> mesh;

@@ -82,19 +82,19 @@ bool ode_mesh(const std::vector<double>& x, std::array<dTriIndex, 3> order) {
 std::string register_ode_methods(study::Registry& r) {
   using study::MethodKind;
   using study::Query;
-  r.push_back({"ode", "double", MethodKind::peer, Query::cylinder_cylinder, 1, true, [](const std::vector<double>& x) {
+  r.push_back({"ode", "double", MethodKind::peer, Query::cylinder_cylinder, 1, {}, [](const std::vector<double>& x) {
                  ode_thread_init();
                  Geom a(ode_cylinder(study::cylinder_at(x, 0))), b(ode_cylinder(study::cylinder_at(x, 7)));
                  return study::boolean_answer(touches(a.id, b.id));
                }});
-  r.push_back({"ode", "double", MethodKind::peer, Query::ray_cylinder, 1, true,
+  r.push_back({"ode", "double", MethodKind::peer, Query::ray_cylinder, 1, {},
                [](const std::vector<double>& x) { return study::boolean_answer(ode_ray(x, false)); }});
-  r.push_back({"ode", "double", MethodKind::peer, Query::segment_cylinder, 1, true,
+  r.push_back({"ode", "double", MethodKind::peer, Query::segment_cylinder, 1, {},
                [](const std::vector<double>& x) { return study::boolean_answer(ode_ray(x, true)); }});
   // ODE's trimesh colliders skip a back-facing triangle (one winding alone misses even a
   // triangle crossing the cylinder through its axis): a one-sided surface is what a user
   // meshing a closed solid gets, so a lone triangle is tested with both windings.
-  r.push_back({"ode_mesh", "double", MethodKind::peer, Query::triangle_cylinder, 1, true,
+  r.push_back({"ode_mesh", "double", MethodKind::peer, Query::triangle_cylinder, 1, {},
                [](const std::vector<double>& x) { return study::boolean_answer(ode_mesh(x, {0, 1, 2}) || ode_mesh(x, {0, 2, 1})); }});
   // Debian's ODE keeps the trimesh colliders' cache in shared state: two threads colliding
   // trimeshes at once abort in fetchMeshTriangle ("ODE INTERNAL ERROR 1", about one default

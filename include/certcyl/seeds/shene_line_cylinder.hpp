@@ -1,7 +1,7 @@
 // certcyl/seeds/shene_line_cylinder.hpp -- Shene's geometric line/cylinder intersection
 // (Graphics Gems IV, ed. Heckbert, 1994, pp. 353-355: "Computing the intersection of a line and
-// a cylinder"), as written, made generic over the number type and completed for the finite solid
-// cylinder.
+// a cylinder"), as written and corrected, generic over the number type and completed for the
+// finite solid cylinder.
 //
 // The text, for a line l(A, u) and the infinite cylinder C(B, v, r) with unit u, v:
 //   - parallel axes: the line misses the surface unless its distance to B is r (then it lies
@@ -10,9 +10,21 @@
 //     w = u (x) v (normalised), d = (B - A).w and the plane through l and OP cuts the cylinder
 //     in an ellipse with semi-axes r / sin(theta) and r, so l meets it at
 //         P +- sqrt((r^2 - d^2) / (1 - (u.v)^2)) u.
-//     The text says "If r < |d|, two points": that is a slip, the condition is r > |d|
-//     (design note, section 5); r = |d| is tangency, an exact equality that floating point
+//     The text says "If r < |d|, ell intersects C at two points [...]; if r = |d|, tangent
+//     at P; otherwise, ell does not intersect C". The first condition is a slip: it must read
+//     r > |d| (design note, section 5). Printed as it is, the three cases are swapped: a line
+//     crossing the wall (r > |d|) falls under "otherwise" and is reported missing, and a line
+//     missing it (r < |d|) is reported to meet C at two points whose parameter offset x has
+//     x^2 = (r^2 - d^2) / (1 - (u.v)^2) < 0, so they are not real (the text's formula would
+//     take the square root of a negative number: NaN in IEEE arithmetic, an error in exact
+//     types). r = |d| is tangency in both readings, an exact equality that floating point
 //     almost never meets.
+//     `SheneVariant::corrected` (the default) reads r > |d|. `SheneVariant::as_written`
+//     follows the printed text: r < |d| answers overlapping (the text's "two points") with no
+//     endpoints, since there are no real points to locate, to clip to a ray or a segment, or to
+//     compare with the caps; r = |d| is the same tangency as corrected; r > |d| answers
+//     separated. Both variants test the same computed quantity, the sign of r^2 - d^2, so they
+//     differ by the slip alone.
 //   - P from equation (1), A + s u + d w = B + s' v, crossed with v and dotted with u x v:
 //     s = ((B - A) x v).(u x v) / |u x v|^2 (the text's remark is cut off before this step).
 // Completion for the solid, finite cylinder (as the Gullotti note describes): a wall hit whose
@@ -20,6 +32,13 @@
 // |axis|) the endpoint is the crossing of the cap0 (cap1) plane, valid when it lies in the cap
 // disk, |X - B|^2 <= r^2 (|X - B - axis|^2 <= r^2); otherwise the line misses the solid. With
 // parallel axes the solid is met when the distance is <= r, between the two cap crossings.
+//
+// Parallel test: the axes are parallel when |u x v|^2 is zero in NT; in an exact type also when
+// 1 - (u.v)^2 is. Both are sin^2 theta, and the text divides by the second: in an exact type they
+// are the same number, but CORE::Expr (CGAL 5.5.1) finds 1 - (u.v)^2 zero for some positive
+// values (u = d/|d| with d = (2^-300, 0, -0.890625), v = e_z) and aborts the process on the
+// division. In floating point the test is |u x v|^2 alone, as the method is usually written
+// (1 - (u.v)^2 rounding to 0 then makes the wall hits infinite and the caps decide).
 //
 // Normalisation (u = d/|d|, v = axis/|axis|) and the ellipse formula need sqrt, so NT is double,
 // long double, Interval_nt, Gmpfr or CORE::Expr. The three-valued answer is the one the method
@@ -36,8 +55,10 @@
 
 namespace certcyl {
 
+enum class SheneVariant { as_written, corrected };
+
 template <class NT>
-LineInterval<NT> shene_line_cylinder(const Line<NT>& line, const Cylinder<NT>& cyl) {
+LineInterval<NT> shene_line_cylinder(const Line<NT>& line, const Cylinder<NT>& cyl, SheneVariant variant = SheneVariant::corrected) {
   const NT one = nt::constant<NT>(1);
   const Point3<NT>& A = line.origin;
   const Point3<NT>& B = cyl.p0;
@@ -56,8 +77,10 @@ LineInterval<NT> shene_line_cylinder(const Line<NT>& line, const Cylinder<NT>& c
   auto radial2_at_cap = [&](const NT& t, const Point3<NT>& centre) { return squared_length(line.at(t) - centre); };
 
   const Vec3<NT> uxv = cross(u, v);
-  const NT s2 = squared_length(uxv);  // sin^2 theta
-  if (nt::sign(s2) == CGAL::ZERO) {
+  const NT s2 = squared_length(uxv);  // sin^2 theta, as |u x v|^2
+  const NT uv = dot(u, v);
+  const NT sin2 = one - uv * uv;      // sin^2 theta, as the text's formula writes it
+  if (nt::sign(s2) == CGAL::ZERO || (NumberTraits<NT>::is_exact && nt::sign(sin2) == CGAL::ZERO)) {
     // Parallel axes: distance from B to the line.
     const NT dist2 = squared_length(cross(BA, u));
     const CGAL::Comparison_result c = nt::compare(dist2, NT(r * r));
@@ -78,10 +101,19 @@ LineInterval<NT> shene_line_cylinder(const Line<NT>& line, const Cylinder<NT>& c
   const NT d = dot(BA, w);
   const NT s = dot(cross(BA, v), uxv) / s2;
   const NT r2_d2 = r * r - d * d;
+  const CGAL::Sign wall = nt::sign(r2_d2);
+  if (variant == SheneVariant::as_written) {
+    // The text as printed: "r < |d|: two points" (not real ones: x^2 < 0), "otherwise" (here
+    // r > |d|) no intersection; r = |d| falls through to the tangency below.
+    if (wall == CGAL::NEGATIVE) {
+      result.answer = Answer::overlapping;
+      return result;
+    }
+    if (wall == CGAL::POSITIVE) return result;
+  }
   // The text's "r < |d|" corrected to r > |d| (two points), r = |d| tangent.
-  if (nt::sign(r2_d2) == CGAL::NEGATIVE) return result;
-  const NT uv = dot(u, v);
-  const NT x = nt::sqrt(NT(r2_d2 / (one - uv * uv)));
+  if (wall == CGAL::NEGATIVE) return result;
+  const NT x = nt::sqrt(NT(r2_d2 / sin2));
   const NT t_wall[2] = {NT((s - x) / lu), NT((s + x) / lu)};
 
   // Completion: each wall hit is kept inside the slab, replaced by a cap hit in the disk below
@@ -111,14 +143,20 @@ LineInterval<NT> shene_line_cylinder(const Line<NT>& line, const Cylinder<NT>& c
   return result;
 }
 
+// A ray or a segment: the line's interval clipped to the range. The as-written variant's
+// "two points" that are not real have nothing to clip: its line answer is returned as is.
 template <class NT>
-LineInterval<NT> shene_line_cylinder(const Ray<NT>& ray, const Cylinder<NT>& cyl) {
-  return clip_to_range(shene_line_cylinder(Line<NT>{ray.origin, ray.direction}, cyl), LineRange::ray);
+LineInterval<NT> shene_line_cylinder(const Ray<NT>& ray, const Cylinder<NT>& cyl, SheneVariant variant = SheneVariant::corrected) {
+  LineInterval<NT> r = shene_line_cylinder(Line<NT>{ray.origin, ray.direction}, cyl, variant);
+  if (r.answer != Answer::separated && !r.in) return r;
+  return clip_to_range(std::move(r), LineRange::ray);
 }
 
 template <class NT>
-LineInterval<NT> shene_line_cylinder(const Segment<NT>& seg, const Cylinder<NT>& cyl) {
-  return clip_to_range(shene_line_cylinder(Line<NT>{seg.p0, seg.direction()}, cyl), LineRange::segment);
+LineInterval<NT> shene_line_cylinder(const Segment<NT>& seg, const Cylinder<NT>& cyl, SheneVariant variant = SheneVariant::corrected) {
+  LineInterval<NT> r = shene_line_cylinder(Line<NT>{seg.p0, seg.direction()}, cyl, variant);
+  if (r.answer != Answer::separated && !r.in) return r;
+  return clip_to_range(std::move(r), LineRange::segment);
 }
 
 }  // namespace certcyl

@@ -67,17 +67,28 @@ inline constexpr std::string_view to_string(MethodKind k) {
   return "?";
 }
 
+// A method's share of the failure maps and the failure hunting. Every method takes part; a
+// slow one evaluates a map on every map_stride-th row and column only (the rows and columns
+// through the degenerate centre cell: map_stride^2 times fewer cells), and the hunt spends
+// hunt_evaluations / hunt_divisor evaluations on it.
+struct Effort {
+  unsigned map_stride = 1;
+  unsigned hunt_divisor = 1;
+};
+
 struct Method {
   std::string base;  // the algorithm: "shene", "gullotti_as_written", "fcl", ...
   std::string nt;    // its arithmetic: "double", "gmpfr<113>", "float (Bullet)", ...
   MethodKind kind = MethodKind::seed_corrected;
   Query query = Query::line_cylinder;
-  // Runs on every stride-th instance of a family only (slow number types), and takes part in
-  // the failure maps and the failure hunting when `cheap`.
+  // Runs on a pseudo-random 1/stride of each family's instances only (slow number types).
   unsigned stride = 1;
-  bool cheap = true;
+  Effort effort{};
   std::function<MethodOutput(const std::vector<double>&)> run;
-  // Runs one call at a time across threads (CORE::Expr's memory pools are shared).
+  // Runs one call at a time, on the study's main thread only, after the parallel work of each
+  // phase: CORE::Expr (two threads at once crashed; calls from two threads in turn, even one
+  // at a time, ended in CORE's "zero divisor" exit on the failure maps) and ODE's trimesh
+  // collider (its OPCODE caches are not thread-safe: a segmentation fault with two threads).
   bool serial = false;
 
   std::string name() const { return base + "/" + nt; }

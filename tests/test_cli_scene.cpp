@@ -1,0 +1,145 @@
+// `certcyl scene`: the statistics of --stats on a scene worked out by hand, and a generated
+// scene (`certcyl make-scene`) against its construction and against every pair of cylinders.
+#define BOOST_TEST_MODULE cli_scene
+#include <boost/test/unit_test.hpp>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "certcyl/certified/cylinder_cylinder.hpp"
+#include "query.hpp"
+#include "scene.hpp"
+#include "scene_generator.hpp"
+
+using namespace certcyl;
+using namespace certcyl::cli;
+
+namespace {
+
+std::vector<json> json_lines(const std::string& text) {
+  std::vector<json> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(json::parse(line));
+  return lines;
+}
+
+json stats_line(const std::string& err) {
+  const std::string prefix = "certcyl scene stats: ";
+  const auto at = err.find(prefix);
+  BOOST_TEST_REQUIRE(at != std::string::npos);
+  const auto end = err.find('\n', at);
+  return json::parse(err.substr(at + prefix.size(), end - at - prefix.size()));
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(stats_count_the_pairs_worked_out_by_hand) {
+  const std::string path = "test_cli_scene_hand.json";
+  {
+    std::ofstream f(path);
+    f << R"({"cylinders": [
+      {"name": "a", "p0": [0,0,0], "p1": [0,0,2], "radius": 1},
+      {"name": "b", "p0": [2,0,0], "p1": [2,0,2], "radius": 1},
+      {"name": "far", "p0": [10,0,0], "p1": [10,0,2], "radius": 1},
+      {"name": "x", "center": [0,0,1], "axis": [1,0,0], "radius": "1/2", "height": 4},
+      {"name": "near", "p0": [1.5,1.5,0], "p1": [1.5,1.5,2], "radius": 0.5}],
+      "triangles": [{"name": "t", "vertices": [[0,0,2],[5,0,2],[0,5,2]]}]})";
+  }
+  // Bounding boxes (exact here): a [-1,1]x[-1,1]x[0,2], b [1,3]x[-1,1]x[0,2], far [9,11]x[-1,1]x[0,2],
+  // x [-2,2]x[-1/2,1/2]x[1/2,3/2], near [1,2]x[1,2]x[0,2], t [0,5]x[0,5]x[2,2]. Closed boxes
+  // meet for a-b (at x = 1), a-x, a-near (at the edge x = y = 1), a-t (at z = 2), b-x, b-near
+  // (at y = 1), b-t and near-t: 8 candidate pairs. Of these, by hand:
+  //   a-b touching (walls at (1, 0, z)); a-x, b-x overlapping (x passes through both);
+  //   a-t, b-t touching (their top caps lie in the triangle's plane z = 2 and meet the
+  //   triangle); near-t touching (its top cap, the disk of radius 1/2 around (3/2, 3/2, 2),
+  //   lies inside the triangle: x + y <= 7/2 < 5);
+  //   a-near separated (axes sqrt(9/2) > 3/2 apart), b-near separated (axes
+  //   sqrt(1/4 + 9/4) = sqrt(5/2) > 3/2 apart).
+  for (unsigned threads : {1u, 2u}) {
+    std::ostringstream out, err;
+    BOOST_TEST(run_scene(path, out, threads, false, true, err) == 0);
+    const json s = stats_line(err.str());
+    BOOST_TEST(s["cylinders"] == 5);
+    BOOST_TEST(s["triangles"] == 1);
+    BOOST_TEST(s["candidate_pairs"] == 8);
+    BOOST_TEST(s["separated"] == 2);
+    BOOST_TEST(s["touching"] == 4);
+    BOOST_TEST(s["overlapping"] == 2);
+    BOOST_TEST(s["undecided"] == 0);
+    BOOST_TEST(s["threads"] == threads);
+    for (const char* phase : {"read", "boxes", "broad", "narrow", "write"}) BOOST_TEST(s["seconds"][phase].get<double>() >= 0.0);
+    const auto lines = json_lines(out.str());
+    const std::vector<std::array<std::string, 3>> expected{{"a", "b", "touching"},   {"a", "x", "overlapping"}, {"a", "t", "touching"},
+                                                           {"b", "x", "overlapping"}, {"b", "t", "touching"},   {"near", "t", "touching"}};
+    BOOST_TEST_REQUIRE(lines.size() == expected.size());
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      BOOST_TEST(lines[i]["a"] == expected[i][0]);
+      BOOST_TEST(lines[i]["b"] == expected[i][1]);
+      BOOST_TEST(lines[i]["answer"] == expected[i][2]);
+      BOOST_TEST(lines[i]["certified"] == true);
+    }
+  }
+  // Without --stats, only the one-line summary.
+  std::ostringstream out, err;
+  BOOST_TEST(run_scene(path, out, 1, false, false, err) == 0);
+  BOOST_TEST(err.str().find("stats:") == std::string::npos);
+  BOOST_TEST(err.str().find("4 touching, 2 overlapping, 0 undecided") != std::string::npos);
+  std::remove(path.c_str());
+}
+
+// A generated scene: every pair built to touch is reported touching, and the scene's lines are
+// exactly the meeting pairs found by the certified query on every pair of cylinders (no broad
+// phase), in pair order, on 1 and 2 threads.
+BOOST_AUTO_TEST_CASE(generated_scene_against_construction_and_all_pairs) {
+  SceneSpec spec;
+  spec.cylinders = 900;
+  spec.seed = 7;
+  spec.touching_share = 0.2;
+  const GeneratedScene g = generate_scene(spec);
+  BOOST_TEST(g.document["cylinders"].size() == 900u);
+  BOOST_TEST(g.touching.size() == 90u);
+  BOOST_TEST(generate_scene(spec).document == g.document);  // seeded: the same scene again
+  const std::vector<SceneSolid> solids = read_scene(json::parse(g.document.dump()));
+
+  std::map<std::pair<std::string, std::string>, std::string> brute;
+  for (std::size_t i = 0; i < solids.size(); ++i)
+    for (std::size_t j = i + 1; j < solids.size(); ++j) {
+      const Answer a = certified_cylinder_cylinder(solids[i].cylinder, solids[j].cylinder, {}).answer;
+      if (a != Answer::separated) brute[{solids[i].name, solids[j].name}] = std::string(to_string(a));
+    }
+  std::string previous;
+  for (unsigned threads : {1u, 2u}) {
+    SceneStats stats;
+    const std::vector<std::string> lines = meeting_pairs(solids, threads, false, stats);
+    std::map<std::pair<std::string, std::string>, std::string> found;
+    std::string all;
+    for (const std::string& l : lines) {
+      if (l.empty()) continue;
+      all += l + '\n';
+      const json j = json::parse(l);
+      found[{j["a"], j["b"]}] = j["answer"];
+    }
+    BOOST_TEST(found == brute);
+    BOOST_TEST(stats.touching + stats.overlapping + stats.undecided == brute.size());
+    BOOST_TEST(stats.candidate_pairs >= brute.size());
+    if (!previous.empty()) BOOST_TEST(all == previous);  // the same lines in the same order
+    previous = all;
+  }
+  for (const auto& [i, j] : g.touching) {
+    const std::string a = solids[i].name, b = solids[j].name;
+    BOOST_TEST_CONTEXT(a << " " << b) {
+      BOOST_TEST(a.substr(0, a.size() - 1) == b.substr(0, b.size() - 1));
+      const std::string answer = brute[std::make_pair(a, b)];
+      BOOST_TEST(answer == "touching");
+    }
+  }
+  // The scene has the density it was built for: many candidate pairs, a good share meeting.
+  SceneStats stats;
+  meeting_pairs(solids, 1, false, stats);
+  BOOST_TEST(stats.candidate_pairs > 900u);
+  BOOST_TEST(stats.overlapping > 100u);
+}
