@@ -22,7 +22,10 @@
 
 #include <array>
 #include <cstdint>
+#include <algorithm>
+#include <chrono>
 #include <functional>
+#include <map>
 #include <iostream>
 #include <random>
 #include <string>
@@ -35,6 +38,30 @@ namespace certcyl::crosscheck {
 using Q = Rational;
 using V = Vec3<Q>;
 
+// Where a cylinder pair's time goes, per kind of case (the driver's --profile).
+struct KindProfile {
+  std::uint64_t cases = 0, evaluations = 0;
+  double case_seconds = 0;     // everything: generation, transformations, queries, re-checks
+  double query_seconds = 0;    // the certified queries
+  double recheck_seconds = 0;  // the independent re-checks
+  std::array<double, kCylinderStages> stage_seconds{};           // the queries' own stage clocks
+  std::array<std::uint64_t, kCylinderStages + 1> decided_by{};  // evaluations per deciding stage (none last)
+  std::uint64_t exact_checks = 0;                                 // Gmpq sign computations, summed
+
+  void merge(const KindProfile& o) {
+    cases += o.cases, evaluations += o.evaluations;
+    case_seconds += o.case_seconds, query_seconds += o.query_seconds, recheck_seconds += o.recheck_seconds;
+    for (std::size_t i = 0; i < stage_seconds.size(); ++i) stage_seconds[i] += o.stage_seconds[i];
+    for (std::size_t i = 0; i < decided_by.size(); ++i) decided_by[i] += o.decided_by[i];
+    exact_checks += o.exact_checks;
+  }
+};
+
+struct Failure {
+  std::uint64_t index;  // the case
+  std::string what;
+};
+
 struct Stats {
   std::uint64_t cases = 0;        // generated inputs
   std::uint64_t evaluations = 0;  // certified queries run (cases times their variants)
@@ -42,13 +69,43 @@ struct Stats {
   std::uint64_t crashes = 0;      // exceptions out of a certified query
   std::uint64_t undecided = 0;    // answers without a claim (cylinder pairs only)
   std::array<std::uint64_t, 4> by_answer{};  // of the original cases
-  std::vector<std::string> failures;         // the first few, for the report
+  std::vector<Failure> failures;             // the first few, for the report
+  std::map<std::string, KindProfile> profile;  // cylinder pairs only
 
-  void fail(std::uint64_t& counter, const std::string& what) {
+  static constexpr std::size_t kMaxFailures = 20;
+
+  void fail(std::uint64_t& counter, std::uint64_t index, const std::string& what) {
     ++counter;
-    if (failures.size() < 20) failures.push_back(what);
+    if (failures.size() < kMaxFailures) failures.push_back({index, what});
+  }
+
+  // Adds another part of the same run (threads, shards); the failures stay ordered by case.
+  void merge(const Stats& o) {
+    cases += o.cases, evaluations += o.evaluations, wrong += o.wrong, crashes += o.crashes, undecided += o.undecided;
+    for (std::size_t i = 0; i < by_answer.size(); ++i) by_answer[i] += o.by_answer[i];
+    failures.insert(failures.end(), o.failures.begin(), o.failures.end());
+    std::stable_sort(failures.begin(), failures.end(), [](const Failure& a, const Failure& b) { return a.index < b.index; });
+    if (failures.size() > kMaxFailures) failures.resize(kMaxFailures);
+    for (const auto& [kind, p] : o.profile) profile[kind].merge(p);
   }
 };
+
+// Case i of a run with seed s is generated from its own seed, so it does not depend on the
+// cases before it: a run split over threads or shards checks the same cases, and one case is
+// reproduced alone (crosscheck --first i --cases 1). splitmix64 of (s, i).
+inline std::uint64_t case_seed(std::uint64_t seed, std::uint64_t i) {
+  std::uint64_t z = seed * 0x9E3779B97F4A7C15ull + i + 0x632BE59BD9B4E019ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+inline std::string describe(const V& v) {
+  return "(" + to_exact_string(v.x) + ", " + to_exact_string(v.y) + ", " + to_exact_string(v.z) + ")";
+}
+inline std::string describe(const Cylinder<Q>& c) {
+  return "{p0 " + describe(c.p0) + ", p1 " + describe(c.p1) + ", r " + to_exact_string(c.radius) + "}";
+}
 
 // ---- exact transformations --------------------------------------------------------------------
 
@@ -247,49 +304,68 @@ inline std::string same_interval(const CertifiedLineResult& base, const Certifie
   return "";
 }
 
-inline void check_lines(std::uint64_t n, std::uint64_t seed, Stats& st) {
-  Generator g(seed);
-  for (std::uint64_t i = 0; i < n; ++i) {
-    const LineCase c = make_line_case(g);
-    ++st.cases;
-    const std::string id = "line case " + std::to_string(i) + " (seed " + std::to_string(seed) + ")";
-    try {
-      const auto eval = [&](const LineCase& x, const std::string& what) {
-        ++st.evaluations;
-        CertifiedLineResult r = run_line(x);
-        if (const std::string e = recheck_line(x, r); !e.empty()) st.fail(st.wrong, id + " " + what + ": " + e);
-        return r;
-      };
-      const CertifiedLineResult base = eval(c, "original");
-      ++st.by_answer[static_cast<int>(base.answer)];
-      // Swapped / reversed.
-      if (c.range != LineRange::ray) {
-        LineCase s = c;
-        if (c.range == LineRange::segment) s.O = c.O + c.d;
-        s.d = V{} - c.d;
-        const auto r = eval(s, "reversed");
-        const Q shift = c.range == LineRange::segment ? Q(1) : Q(0);
-        if (const std::string e = same_interval(base, r, -1, shift); !e.empty()) st.fail(st.wrong, id + " reversed: " + e);
-      }
-      // Flipped cylinder.
-      if (!c.elliptic) {
-        LineCase f = c;
-        f.cyl = flip(c.cyl);
-        if (const std::string e = same_interval(base, eval(f, "flipped"), 1, 0); !e.empty()) st.fail(st.wrong, id + " flipped: " + e);
-      }
-      for (const Transform& t : g.transforms()) {
-        LineCase m = c;
-        m.O = t.point(c.O);
-        m.d = t.vector(c.d);
-        m.cyl = apply(t, c.cyl);
-        m.ell = apply(t, c.ell);
-        if (const std::string e = same_interval(base, eval(m, t.name()), 1, 0); !e.empty()) st.fail(st.wrong, id + " " + t.name() + ": " + e);
-      }
-    } catch (const std::exception& e) {
-      st.fail(st.crashes, id + ": exception: " + e.what());
+inline std::string describe(const LineCase& c) {
+  const char* range = c.range == LineRange::line ? "line" : c.range == LineRange::ray ? "ray" : "segment";
+  std::string solid = c.elliptic ? "elliptic {base " + describe(c.ell.base) + ", a " + describe(c.ell.a) + ", b " + describe(c.ell.b) +
+                                       ", c " + describe(c.ell.c) + "}"
+                                 : "cylinder " + describe(c.cyl);
+  return std::string(range) + " O " + describe(c.O) + ", d " + describe(c.d) + "; " + solid;
+}
+
+// Case i of the line cross-check: the original and its reversed, flipped, translated, scaled
+// and permuted variants, each re-checked, their intervals compared exactly.
+inline void check_line_case(std::uint64_t i, std::uint64_t seed, Stats& st) {
+  Generator g(case_seed(seed, i));
+  const LineCase c = make_line_case(g);
+  ++st.cases;
+  const std::string id = "line case " + std::to_string(i) + " (seed " + std::to_string(seed) + ")";
+  bool failed = false;
+  const auto fail = [&](std::uint64_t& counter, const std::string& what) {
+    st.fail(counter, i, id + " " + what + (failed ? "" : "; input: " + describe(c)));
+    failed = true;
+  };
+  try {
+    const auto eval = [&](const LineCase& x, const std::string& what) {
+      ++st.evaluations;
+      CertifiedLineResult r = run_line(x);
+      if (const std::string e = recheck_line(x, r); !e.empty()) fail(st.wrong, what + ": " + e);
+      return r;
+    };
+    const CertifiedLineResult base = eval(c, "original");
+    ++st.by_answer[static_cast<int>(base.answer)];
+    // Swapped / reversed.
+    if (c.range != LineRange::ray) {
+      LineCase s = c;
+      if (c.range == LineRange::segment) s.O = c.O + c.d;
+      s.d = V{} - c.d;
+      const auto r = eval(s, "reversed");
+      const Q shift = c.range == LineRange::segment ? Q(1) : Q(0);
+      if (const std::string e = same_interval(base, r, -1, shift); !e.empty()) fail(st.wrong, "reversed: " + e);
     }
+    // Flipped cylinder.
+    if (!c.elliptic) {
+      LineCase f = c;
+      f.cyl = flip(c.cyl);
+      if (const std::string e = same_interval(base, eval(f, "flipped"), 1, 0); !e.empty()) fail(st.wrong, "flipped: " + e);
+    }
+    for (const Transform& t : g.transforms()) {
+      LineCase m = c;
+      m.O = t.point(c.O);
+      m.d = t.vector(c.d);
+      m.cyl = apply(t, c.cyl);
+      m.ell = apply(t, c.ell);
+      if (const std::string e = same_interval(base, eval(m, t.name()), 1, 0); !e.empty()) fail(st.wrong, t.name() + ": " + e);
+    }
+  } catch (const std::exception& e) {
+    fail(st.crashes, std::string("exception: ") + e.what());
   }
 }
+
+// Cases first, ..., first + n - 1.
+inline void check_lines(std::uint64_t first, std::uint64_t n, std::uint64_t seed, Stats& st) {
+  for (std::uint64_t i = first; i < first + n; ++i) check_line_case(i, seed, st);
+}
+inline void check_lines(std::uint64_t n, std::uint64_t seed, Stats& st) { check_lines(0, n, seed, st); }
 
 // ---- triangles ----------------------------------------------------------------------------------
 
@@ -337,37 +413,52 @@ inline TriangleCase make_triangle_case(Generator& g) {
   return c;
 }
 
-inline void check_triangles(std::uint64_t n, std::uint64_t seed, Stats& st) {
-  Generator g(seed);
-  for (std::uint64_t i = 0; i < n; ++i) {
-    const TriangleCase c = make_triangle_case(g);
-    ++st.cases;
-    const std::string id = "triangle case " + std::to_string(i) + " (seed " + std::to_string(seed) + ")";
-    try {
-      const auto eval = [&](const Triangle<Q>& T, const Cylinder<Q>& C, const std::string& what) {
-        ++st.evaluations;
-        const TriangleCylinderResult r = certified_triangle_cylinder(T, C);
-        if (const std::string e = recheck::check_triangle(T, C, r); !e.empty()) st.fail(st.wrong, id + " " + what + ": " + e);
-        return r.answer;
-      };
-      const Answer base = eval(c.T, c.C, "original");
-      ++st.by_answer[static_cast<int>(base)];
-      const auto same = [&](Answer a, const std::string& what) {
-        if (a != base) st.fail(st.wrong, id + " " + what + ": " + std::string(to_string(a)) + " vs " + std::string(to_string(base)));
-      };
-      same(eval({{c.T.v[1], c.T.v[2], c.T.v[0]}}, c.C, "vertices rotated"), "vertices rotated");
-      same(eval(c.T, flip(c.C), "flipped"), "flipped");
-      for (const Transform& t : g.transforms()) same(eval(apply(t, c.T), apply(t, c.C), t.name()), t.name());
-    } catch (const std::exception& e) {
-      st.fail(st.crashes, id + ": exception: " + e.what());
-    }
+inline std::string describe(const TriangleCase& c) {
+  return "triangle " + describe(c.T.v[0]) + ", " + describe(c.T.v[1]) + ", " + describe(c.T.v[2]) + "; cylinder " + describe(c.C);
+}
+
+// Case i of the triangle cross-check: the original, its vertices rotated, the cylinder flipped,
+// translated, scaled and permuted, each re-checked, the answers compared.
+inline void check_triangle_case(std::uint64_t i, std::uint64_t seed, Stats& st) {
+  Generator g(case_seed(seed, i));
+  const TriangleCase c = make_triangle_case(g);
+  ++st.cases;
+  const std::string id = "triangle case " + std::to_string(i) + " (seed " + std::to_string(seed) + ")";
+  bool failed = false;
+  const auto fail = [&](std::uint64_t& counter, const std::string& what) {
+    st.fail(counter, i, id + " " + what + (failed ? "" : "; input: " + describe(c)));
+    failed = true;
+  };
+  try {
+    const auto eval = [&](const Triangle<Q>& T, const Cylinder<Q>& C, const std::string& what) {
+      ++st.evaluations;
+      const TriangleCylinderResult r = certified_triangle_cylinder(T, C);
+      if (const std::string e = recheck::check_triangle(T, C, r); !e.empty()) fail(st.wrong, what + ": " + e);
+      return r.answer;
+    };
+    const Answer base = eval(c.T, c.C, "original");
+    ++st.by_answer[static_cast<int>(base)];
+    const auto same = [&](Answer a, const std::string& what) {
+      if (a != base) fail(st.wrong, what + ": " + std::string(to_string(a)) + " vs " + std::string(to_string(base)));
+    };
+    same(eval({{c.T.v[1], c.T.v[2], c.T.v[0]}}, c.C, "vertices rotated"), "vertices rotated");
+    same(eval(c.T, flip(c.C), "flipped"), "flipped");
+    for (const Transform& t : g.transforms()) same(eval(apply(t, c.T), apply(t, c.C), t.name()), t.name());
+  } catch (const std::exception& e) {
+    fail(st.crashes, std::string("exception: ") + e.what());
   }
 }
+
+inline void check_triangles(std::uint64_t first, std::uint64_t n, std::uint64_t seed, Stats& st) {
+  for (std::uint64_t i = first; i < first + n; ++i) check_triangle_case(i, seed, st);
+}
+inline void check_triangles(std::uint64_t n, std::uint64_t seed, Stats& st) { check_triangles(0, n, seed, st); }
 
 // ---- cylinder pairs -----------------------------------------------------------------------------
 
 struct CylinderPairCase {
   Cylinder<Q> a, b;
+  std::string kind;  // for the profile: "random", "random parallel", or the contact, the move and the placement
 };
 
 inline CylinderPairCase make_cylinder_pair_case(Generator& g) {
@@ -381,6 +472,7 @@ inline CylinderPairCase make_cylinder_pair_case(Generator& g) {
       x->radius = g.radius();
     }
     if (kind == 4) c.b.p1 = c.b.p0 + Q(g.uniform(1, 3)) * V(c.a.p1 - c.a.p0);  // parallel axes
+    c.kind = kind == 4 ? "random parallel" : "random";
     return c;
   }
   // Touching by construction (a: axis z, z in [0, 2], radius 1), b moved by s eps along the
@@ -391,7 +483,8 @@ inline CylinderPairCase make_cylinder_pair_case(Generator& g) {
   Cylinder<Q> b;
   V n;
   const Q off = Q(g.uniform(-8, 8)) / 8;
-  switch (g.uniform(0, 5)) {
+  const int contact = g.uniform(0, 5);
+  switch (contact) {
     case 0: b = {{off, 0, 2}, {off, 0, 5}, Q(1)}, n = {0, 0, 1}; break;               // cap-cap
     case 1: b = {{-1, off, 3}, {1, off, 3}, Q(1)}, n = {0, 0, 1}; break;              // cap-wall
     case 2: b = {{2, -1, off}, {2, 1, off}, Q(1)}, n = {1, 0, 0}; break;              // wall-wall crossing
@@ -416,44 +509,74 @@ inline CylinderPairCase make_cylinder_pair_case(Generator& g) {
   };
   c.a = place(a);
   c.b = place(b);
+  static const char* const contacts[] = {"cap-cap", "cap-wall", "wall-wall crossing", "wall-wall parallel", "rim-cap", "rim-wall"};
+  c.kind = std::string(contacts[contact]) + (s < 0 ? ", -eps" : s > 0 ? ", +eps" : ", touching") + (rotate ? ", rotated" : ", shifted");
   return c;
 }
 
-inline void check_cylinder_pairs(std::uint64_t n, std::uint64_t seed, Stats& st) {
-  Generator g(seed);
-  for (std::uint64_t i = 0; i < n; ++i) {
-    const CylinderPairCase c = make_cylinder_pair_case(g);
-    ++st.cases;
-    const std::string id = "cylinder pair case " + std::to_string(i) + " (seed " + std::to_string(seed) + ")";
-    try {
-      const auto eval = [&](const Cylinder<Q>& a, const Cylinder<Q>& b, const std::string& what) {
-        ++st.evaluations;
-        const CylinderCylinderResult r = certified_cylinder_cylinder(a, b);
-        if (r.answer == Answer::undecided) ++st.undecided;
-        if (const std::string e = recheck::check_cylinder_pair(a, b, r); !e.empty()) st.fail(st.wrong, id + " " + what + ": " + e);
-        return r.answer;
-      };
-      const Answer base = eval(c.a, c.b, "original");
-      ++st.by_answer[static_cast<int>(base)];
-      // Undecided is no claim: it may differ from a decided answer without being wrong.
-      const auto same = [&](Answer x, const std::string& what) {
-        if (x != base && x != Answer::undecided && base != Answer::undecided)
-          st.fail(st.wrong, id + " " + what + ": " + std::string(to_string(x)) + " vs " + std::string(to_string(base)));
-      };
-      same(eval(c.b, c.a, "swapped"), "swapped");
-      same(eval(flip(c.a), c.b, "flipped"), "flipped");
-      for (const Transform& t : g.transforms()) same(eval(apply(t, c.a), apply(t, c.b), t.name()), t.name());
-    } catch (const std::exception& e) {
-      st.fail(st.crashes, id + ": exception: " + e.what());
-    }
+inline std::string describe(const CylinderPairCase& c) { return "a " + describe(c.a) + ", b " + describe(c.b); }
+
+// Case i of the cylinder-pair cross-check: the original, swapped, a flipped, translated, scaled
+// and permuted, each re-checked, the decided answers compared. With `profile`, the time of each
+// part is added to st.profile under the case's kind.
+inline void check_cylinder_pair_case(std::uint64_t i, std::uint64_t seed, Stats& st, bool profile = false) {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point case_start = profile ? Clock::now() : Clock::time_point{};
+  Generator g(case_seed(seed, i));
+  const CylinderPairCase c = make_cylinder_pair_case(g);
+  ++st.cases;
+  KindProfile* kp = profile ? &st.profile[c.kind] : nullptr;
+  if (kp) ++kp->cases;
+  const std::string id = "cylinder pair case " + std::to_string(i) + " (seed " + std::to_string(seed) + ")";
+  bool failed = false;
+  const auto fail = [&](std::uint64_t& counter, const std::string& what) {
+    st.fail(counter, i, id + " " + what + (failed ? "" : "; input: " + describe(c)));
+    failed = true;
+  };
+  try {
+    const auto eval = [&](const Cylinder<Q>& a, const Cylinder<Q>& b, const std::string& what) {
+      ++st.evaluations;
+      const Clock::time_point t0 = kp ? Clock::now() : Clock::time_point{};
+      const CylinderCylinderResult r = certified_cylinder_cylinder(a, b);
+      const Clock::time_point t1 = kp ? Clock::now() : Clock::time_point{};
+      if (r.answer == Answer::undecided) ++st.undecided;
+      if (const std::string e = recheck::check_cylinder_pair(a, b, r); !e.empty()) fail(st.wrong, what + ": " + e);
+      if (kp) {
+        ++kp->evaluations;
+        kp->query_seconds += std::chrono::duration<double>(t1 - t0).count();
+        kp->recheck_seconds += std::chrono::duration<double>(Clock::now() - t1).count();
+        for (std::size_t k = 0; k < kCylinderStages; ++k) kp->stage_seconds[k] += r.stage_seconds[k];
+        ++kp->decided_by[static_cast<std::size_t>(r.stage)];
+        kp->exact_checks += r.counters.exact_checks;
+      }
+      return r.answer;
+    };
+    const Answer base = eval(c.a, c.b, "original");
+    ++st.by_answer[static_cast<int>(base)];
+    // Undecided is no claim: it may differ from a decided answer without being wrong.
+    const auto same = [&](Answer x, const std::string& what) {
+      if (x != base && x != Answer::undecided && base != Answer::undecided)
+        fail(st.wrong, what + ": " + std::string(to_string(x)) + " vs " + std::string(to_string(base)));
+    };
+    same(eval(c.b, c.a, "swapped"), "swapped");
+    same(eval(flip(c.a), c.b, "flipped"), "flipped");
+    for (const Transform& t : g.transforms()) same(eval(apply(t, c.a), apply(t, c.b), t.name()), t.name());
+  } catch (const std::exception& e) {
+    fail(st.crashes, std::string("exception: ") + e.what());
   }
+  if (kp) kp->case_seconds += std::chrono::duration<double>(Clock::now() - case_start).count();
 }
+
+inline void check_cylinder_pairs(std::uint64_t first, std::uint64_t n, std::uint64_t seed, Stats& st, bool profile = false) {
+  for (std::uint64_t i = first; i < first + n; ++i) check_cylinder_pair_case(i, seed, st, profile);
+}
+inline void check_cylinder_pairs(std::uint64_t n, std::uint64_t seed, Stats& st) { check_cylinder_pairs(0, n, seed, st); }
 
 inline void print(std::ostream& out, const std::string& query, const Stats& s) {
   out << query << ": " << s.cases << " cases, " << s.evaluations << " certified answers re-checked; separated/touching/overlapping "
       << s.by_answer[0] << "/" << s.by_answer[1] << "/" << s.by_answer[2] << "; undecided " << s.undecided << "; wrong "
       << s.wrong << "; crashes " << s.crashes << "\n";
-  for (const std::string& f : s.failures) out << "  " << f << "\n";
+  for (const Failure& f : s.failures) out << "  " << f.what << "\n";
 }
 
 }  // namespace certcyl::crosscheck

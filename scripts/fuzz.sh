@@ -1,21 +1,18 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer harnesses (fuzz/) with clang under AddressSanitizer and
-# UndefinedBehaviorSanitizer in build-fuzz/, and runs each for the given time from its seed
-# corpus (fuzz/corpus/<harness>/, copied, so the repository's corpus is left unchanged).
+# Builds the libFuzzer harnesses (fuzz/) under AddressSanitizer and UndefinedBehaviorSanitizer
+# (scripts/build-sanitize.sh: clang, build-sanitize/, shared with scripts/test-sanitizers.sh) and
+# runs each for the given time from its seed corpus (fuzz/corpus/<harness>/, copied, so the
+# repository's corpus is left unchanged).
 #   scripts/fuzz.sh [seconds]     default 60 s per harness
-# Prints the executions per harness; exits non-zero if a harness found a crash, a hang, undefined
-# behaviour or a wrong certified answer (the input is kept in build-fuzz/findings/).
+# Prints the executions per harness; exits non-zero if a harness found a crash, a hang (one
+# input over 10 s), a memory blow-up, a leak, undefined behaviour or a wrong certified answer
+# (the input is kept in build-sanitize/findings/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
-bash scripts/install-deps.sh --fuzz
-build=build-fuzz
-flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g"
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS="$flags" \
-  -DCERTCYL_FUZZ=ON -DCERTCYL_BUILD_TESTS=OFF -DCERTCYL_BUILD_BENCHMARKS=OFF -DCERTCYL_BUILD_EXPERIMENTS=OFF \
-  -DCERTCYL_WERROR=ON > /dev/null
 harnesses=(fuzz_json_line fuzz_line_cylinder fuzz_triangle_cylinder fuzz_cylinder_cylinder)
-cmake --build "$build" -j"$(nproc)" --target "${harnesses[@]}"
+bash scripts/build-sanitize.sh "${harnesses[@]}"
+build=build-sanitize
 mkdir -p "$build/findings"
 status=0
 summary=()

@@ -260,6 +260,23 @@ BOOST_AUTO_TEST_CASE(large_translation) {
                   pt(1, 0, 2) + d);
 }
 
+// Regression (found by fuzz_triangle_cylinder): a cylinder whose axis is subnormal, so A.A
+// underflows to 0 in double. The certificate guessed in double then had NaN barycentric
+// coordinates, and converting them to Mpzf failed CGAL's assertion (an exception out of the
+// query where assertions are on, as in the sanitizer build; under NDEBUG a garbage guess that
+// the exact check rejected).
+//   The cylinder is a disk of thickness 2^-1074 * 0x301 in 0 <= x <= that, radius 2, about the
+//   x axis; v1 = (0, 0, 2^-7) lies on its cap x = 0, and the points v1 + s (v0 - v1) with
+//   0 < s < thickness are interior: overlapping.
+BOOST_AUTO_TEST_CASE(subnormal_axis_no_guess_from_nan) {
+  const Cylinder<Rational> c{{0, 0, 0}, {Rational(0x0.00000000301p-1022), 0, 0}, Rational(2)};
+  const Triangle<Rational> t = tri(pt(1, 0, 0), pt(0, 0, Rational(0x1p-7)), pt(-1, -90, Rational(0x0.001a6a6a6a6a6p-1022)));
+  const Res r = certified_triangle_cylinder(t, c);
+  BOOST_TEST(to_string(r.answer) == "overlapping");
+  BOOST_TEST(check_triangle_cylinder_certificate(r, t, c) == "");
+  BOOST_TEST(oracle::triangle_cylinder(t, c) == Answer::overlapping);
+}
+
 // ---- Property tests ---------------------------------------------------------------------------
 
 namespace {

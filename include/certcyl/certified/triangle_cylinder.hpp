@@ -570,6 +570,10 @@ inline bool guessed_certificate(TriangleCylinderResult& res, const Triangle<doub
   const SlabPolygon<double> S = clip_to_slab(in, ax.s, ax.top, ax.lo, ax.hi);
   if (S.n == 0) return false;
   const Vec3<double> x = nearest_to_axis(S, in);
+  // else below: a non-finite value (an axis so short that A.A underflows, e.g. subnormal) gives
+  // no guess; Mpzf cannot hold it.
+  const auto finite = [](const Vec3<double>& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+  if (!finite(x)) return false;
   const Vec3<M> Am = Vec3<M>(Cd.p1.map([](double v) { return M(v); }) - Cd.p0.map([](double v) { return M(v); }));
 
   if (res.answer == Answer::separated) {
@@ -599,6 +603,7 @@ inline bool guessed_certificate(TriangleCylinderResult& res, const Triangle<doub
     const auto grid = [](double t) { return std::ldexp(std::nearbyint(std::ldexp(std::clamp(t, 0.0, 1.0), 30)), -30); };
     const double alpha = grid((b1 * g22 - b2 * g12) / det);
     const double beta = std::min(grid((b2 * g11 - b1 * g12) / det), 1.0 - alpha);
+    if (!std::isfinite(alpha) || !std::isfinite(beta)) continue;  // else: no candidate (NaN survives the clamp)
     const Vec3<M> p = Tm.v[0] + M(alpha) * Vec3<M>(Tm.v[1] - Tm.v[0]) + M(beta) * Vec3<M>(Tm.v[2] - Tm.v[0]);
     if (classify_point(p, Cm) == Side::inside) {
       res.witness = p.map([](const M& v) { return Rational(v); });
