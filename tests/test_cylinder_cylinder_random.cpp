@@ -269,8 +269,21 @@ void check_direction_filter(const World& w, const D3& D0, FilterTally& t) {
   }
 }
 
-// Same for points: inside-both decisions and the sigma bound, exactly:
-// sigma AA >= |2s - AA| and sigma^2 r^2 AA >= |w x A|^2 for both cylinders.
+// A claimed upper bound sigma of sigma(X) (finite: a bound), exactly: sigma AA >= |2s - AA| and
+// sigma^2 r^2 AA >= |w x A|^2 for both cylinders.
+void check_sigma_bound(const cd::CylinderPair<Q>& q, const Point3<Q>& X, double sigma) {
+  if (!std::isfinite(sigma)) return;
+  const Q S(sigma);
+  for (const Cylinder<Q>* c : {&q.c0, &q.c1}) {
+    const Vec3<Q> A = c->p1 - c->p0, v = X - c->p0;
+    const Q AA = dot(A, A), two_s = 2 * dot(v, A) - AA;
+    BOOST_TEST(S * AA >= (two_s < 0 ? Q(-two_s) : two_s));
+    const Vec3<Q> x = cross(v, A);
+    BOOST_TEST(S * S * c->radius * c->radius * AA >= dot(x, x));
+  }
+}
+
+// Same for points: inside-both decisions and the sigma bound.
 void check_point_filter(const World& w, const D3& X, FilterTally& t) {
   const cd::StaticPoint sp = cd::static_point(w.s, X);
   const StaticSign g = cd::static_inside_both(sp);
@@ -282,17 +295,7 @@ void check_point_filter(const World& w, const D3& X, FilterTally& t) {
     ++t.decided;
     BOOST_TEST((g == StaticSign::positive) == truth);
   }
-  const double sigma = cd::static_sigma_upper(w.s, sp);
-  if (std::isfinite(sigma)) {
-    const Q S(sigma);
-    for (const Cylinder<Q>* c : {&w.q.c0, &w.q.c1}) {
-      const Vec3<Q> A = c->p1 - c->p0, v = E - c->p0;
-      const Q AA = dot(A, A), s = dot(v, A), two_s = 2 * s - AA;
-      BOOST_TEST(S * AA >= (two_s < 0 ? Q(-two_s) : two_s));
-      const Vec3<Q> x = cross(v, A);
-      BOOST_TEST(S * S * c->radius * c->radius * AA >= dot(x, x));
-    }
-  }
+  check_sigma_bound(w.q, E, cd::static_sigma_upper(w.s, sp));
 }
 
 }  // namespace
@@ -453,16 +456,7 @@ void check_quick_point(const Pair& p, const D3& X, QuickTally& t) {
   } else {
     ++t.not_inside;
   }
-  if (std::isfinite(r.sigma_upper)) {
-    const Q S(r.sigma_upper);
-    for (const Cylinder<Q>* c : {&q.c0, &q.c1}) {
-      const Vec3<Q> A = c->p1 - c->p0, v = E - c->p0;
-      const Q AA = dot(A, A), two_s = 2 * dot(v, A) - AA;
-      BOOST_TEST(S * AA >= (two_s < 0 ? Q(-two_s) : two_s));
-      const Vec3<Q> x = cross(v, A);
-      BOOST_TEST(S * S * c->radius * c->radius * AA >= dot(x, x));
-    }
-  }
+  check_sigma_bound(q, E, r.sigma_upper);
 }
 
 }  // namespace

@@ -494,6 +494,12 @@ class CylinderCylinderSolver {
     const double lower = (Interval(1) / Interval(s.sup())).inf();
     if (lower > phi_lower_) phi_lower_ = lower;
   }
+  // The segment between the midpoints (static_segment_phi_lower); needs the filter.
+  void bound_by_segment() {
+    if (!options_.gap_enclosure || !static_ok_) return;
+    const double lower = static_segment_phi_lower(stat_);
+    if (lower > phi_lower_) phi_lower_ = lower;
+  }
   // An input-frame rational point in world intervals.
   Point3<Interval> world_iv(const Point3<Rational>& X) const {
     CGAL::Protect_FPU_rounding<true> upward;
@@ -622,11 +628,8 @@ class CylinderCylinderSolver {
         if (static_separation_sign(*t_terms) == StaticSign::positive) {
           ++result_.counters.static_decisions;
           last_check_ = CylinderArithmetic::static_filter;
-          if (options_.gap_enclosure) {
-            lower_phi_upper(static_ratio_upper(*t_terms));
-            const double lower = static_segment_phi_lower(stat_);
-            if (lower > phi_lower_) phi_lower_ = lower;
-          }
+          if (options_.gap_enclosure) lower_phi_upper(static_ratio_upper(*t_terms));
+          bound_by_segment();
           return separated_by(D);
         }
       }
@@ -663,10 +666,7 @@ class CylinderCylinderSolver {
       if (check_direction(D, &terms) == CGAL::POSITIVE) {
         if (options_.gap_enclosure) {
           bound_by_direction(D, terms ? &*terms : nullptr);
-          if (static_ok_) {
-            const double lower = static_segment_phi_lower(stat_);
-            if (lower > phi_lower_) phi_lower_ = lower;
-          }
+          bound_by_segment();
           bound_by_point(X);
         }
         return separated_by(D);
@@ -692,10 +692,7 @@ class CylinderCylinderSolver {
       std::optional<StaticDirection> terms;
       if (check_direction(D, &terms) == CGAL::POSITIVE) {
         bound_by_direction(D, terms ? &*terms : nullptr);
-        if (static_ok_) {
-          const double lower = static_segment_phi_lower(stat_);
-          if (lower > phi_lower_) phi_lower_ = lower;
-        }
+        bound_by_segment();
         bound_by_point(points[0]);
         return separated_by(D);
       }
@@ -742,10 +739,7 @@ class CylinderCylinderSolver {
     }
     bound_by_direction(D);
     bound_by_point(X);
-    if (static_ok_ && options_.gap_enclosure) {
-      const double lower = static_segment_phi_lower(stat_);
-      if (lower > phi_lower_) phi_lower_ = lower;
-    }
+    bound_by_segment();
     return pass();
   }
 
@@ -890,10 +884,9 @@ class CylinderCylinderSolver {
 
 // The quick path's overlap: the r0:r1 division point of the closest points of the axis segments,
 // then their midpoint, proved strictly inside both by detail/cylinder_quick_filter.hpp; q holds
-// Delta's upper bound of phi*.
+// Delta's upper bound of phi*. Fills the answer's own fields; quick_answer the common ones.
 inline bool quick_overlap(const Cylinder<double>& c0, const Cylinder<double>& c1, double w, const QuickSeparation& q,
-                          const CylinderCylinderOptions& options, std::chrono::steady_clock::time_point start,
-                          CylinderCylinderResult& r) {
+                          const CylinderCylinderOptions& options, CylinderCylinderResult& r) {
   // Closest points of the axes inset by half a radius from the caps: the division point then
   // lies off the cap planes (it decides about four overlapping random pairs in five).
   const Vec3<double> A0 = c0.p1 - c0.p0, A1 = c1.p1 - c1.p0;
@@ -910,22 +903,15 @@ inline bool quick_overlap(const Cylinder<double>& c0, const Cylinder<double>& c1
   }
   if (!p.inside) return false;
   r.answer = Answer::overlapping;
-  r.stage = CylinderStage::fast_path;
-  r.certified_by = CylinderArithmetic::static_filter;
   r.witness_binary64 = X;
   if (options.rational_certificates) r.witness = X.map([](double x) { return Rational(x); });
-  r.counters.directions_checked = 1;
   r.counters.points_checked = points;
-  r.counters.static_decisions = 1;
   if (options.gap_enclosure && std::isfinite(q.phi_upper) && p.sigma_upper > 0 && std::isfinite(p.sigma_upper)) {
     // fl(rho' fl(1 / s)) <= rho' (1 + u)^2 / s <= 1 / s <= phi*.
     r.gap_known = true;
     r.phi_lower = kStaticRoundDown * (1 / p.sigma_upper);
     r.phi_upper = q.phi_upper;
   }
-  if (options.time_stages)
-    r.stage_seconds[static_cast<std::size_t>(CylinderStage::fast_path)] =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return true;
 }
 
@@ -949,19 +935,22 @@ inline bool quick_answer(const Cylinder<double>& c0, const Cylinder<double>& c1,
   if (!(normaliser >= 0x1p-100 && normaliser <= 0x1p100)) return false;
   const double w = 1 / normaliser;
   QuickSeparation q;
-  if (!quick_separation(c0, c1, w, options.gap_enclosure, q)) return quick_overlap(c0, c1, w, q, options, start, r);
-  r.answer = Answer::separated;
+  if (quick_separation(c0, c1, w, options.gap_enclosure, q)) {
+    r.answer = Answer::separated;
+    r.direction_binary64 = q.direction;
+    if (options.rational_certificates) r.direction = q.direction.map([](double x) { return Rational(x); });
+    if (options.gap_enclosure && q.phi_lower > 0 && std::isfinite(q.phi_upper)) {
+      r.gap_known = true;
+      r.phi_lower = q.phi_lower;
+      r.phi_upper = q.phi_upper;
+    }
+  } else if (!quick_overlap(c0, c1, w, q, options, r)) {
+    return false;
+  }
   r.stage = CylinderStage::fast_path;
   r.certified_by = CylinderArithmetic::static_filter;
-  r.direction_binary64 = q.direction;
-  if (options.rational_certificates) r.direction = q.direction.map([](double x) { return Rational(x); });
   r.counters.directions_checked = 1;
   r.counters.static_decisions = 1;
-  if (options.gap_enclosure && q.phi_lower > 0 && std::isfinite(q.phi_upper)) {
-    r.gap_known = true;
-    r.phi_lower = q.phi_lower;
-    r.phi_upper = q.phi_upper;
-  }
   if (options.time_stages)
     r.stage_seconds[static_cast<std::size_t>(CylinderStage::fast_path)] = std::chrono::duration<double>(Clock::now() - start).count();
   return true;

@@ -83,9 +83,9 @@ namespace certcyl::detail {
 
 struct QuickSeparation {
   Vec3<double> direction;  // T (exact as given)
-  // Certified bounds of phi*: the upper one from T whether or not T separates (+infinity when
-  // the filter's guards fail or |T.T*| may vanish); the lower one from the segment between the
-  // midpoints, only when asked for (0: none).
+  // Certified bounds of phi*, only when asked for: the upper one from T whether or not T
+  // separates (+infinity when the filter's guards fail or |T.T*| may vanish); the lower one from
+  // the segment between the midpoints, only when T separates (0: none).
   double phi_upper = std::numeric_limits<double>::infinity();
   double phi_lower = 0;
 };
@@ -112,6 +112,7 @@ inline bool quick_separation(const Cylinder<double>& c0, const Cylinder<double>&
   if (!bounds) return separated;
   const double M = DT - 0x1p-41 * ww;
   if (M > 0) out.phi_upper = kRho * ((((std::abs(DA0) + 0x1p-43 * ww) + (std::abs(DA1) + 0x1p-43 * ww)) + roots) / M);
+  if (!separated) return false;  // the caller's lower bound then comes from a point
   // 1 / (scale of cylinder k at the other midpoint), from above up to 1 + 6.0004u.
   const auto inverse_scale = [ww](double DA, double AA, double x, double rr) {
     const double axial = AA / (std::abs(DA) + 0x1p-42 * ww);
