@@ -22,7 +22,8 @@ ojson cylinder_cylinder_json(const CylinderCylinderResult& r) {
   out["stage"] = std::string(to_string(r.stage));
   // log(phi*): negative when separated, 0 when touching, positive when overlapping; null when
   // the midpoints coincide (phi* is undefined: overlapping at every scale).
-  out["gap"] = r.gap_known ? ojson::array({r.log_gap_lower(), r.log_gap_upper()}) : ojson(nullptr);
+  const CylinderGap gap = r.gap();
+  out["gap"] = gap.known ? ojson::array({gap.log_lower(), gap.log_upper()}) : ojson(nullptr);
   ojson cert;
   if (const auto d = r.exact_direction()) cert["direction"] = exact_json(*d);
   if (const auto x = r.exact_witness()) cert["witness"] = exact_json(*x);
@@ -33,7 +34,7 @@ ojson cylinder_cylinder_json(const CylinderCylinderResult& r) {
                             {"normal", exact_json(r.contact->normal)},
                             {"point", exact_json(r.contact->point)}};
   }
-  if (r.answer == Answer::undecided) cert["phi_bounds"] = ojson::array({r.phi_lower, r.phi_upper});
+  if (r.answer == Answer::undecided) cert["phi_bounds"] = ojson::array({gap.phi_lower, gap.phi_upper});
   if (r.gmpfr_precision) cert["gmpfr_precision"] = r.gmpfr_precision;
   out["certificate"] = cert;
   return out;

@@ -44,13 +44,16 @@ BOOST_AUTO_TEST_CASE(simple_separated_and_overlapping) {
   const auto sep = query(a, cyl({3, 0, 0}, {3, 0, 1}, 1));
   BOOST_TEST(to_string(sep.answer) == "separated");
   // phi* = (r0 + r1) / 3 = 2/3 exactly: the enclosure must contain it.
-  BOOST_TEST(sep.gap_known);
-  BOOST_TEST((sep.phi_lower <= 2.0 / 3 + 1e-16 && 2.0 / 3 - 1e-16 <= sep.phi_upper));
-  BOOST_TEST((sep.log_gap_lower() <= std::log(2.0 / 3) + 1e-15 && std::log(2.0 / 3) - 1e-15 <= sep.log_gap_upper()));
+  const certcyl::CylinderGap sg = sep.gap();
+  BOOST_TEST(sg.known);
+  BOOST_TEST((sg.phi_lower <= 2.0 / 3 + 1e-16 && 2.0 / 3 - 1e-16 <= sg.phi_upper));
+  BOOST_TEST((sg.log_lower() <= std::log(2.0 / 3) + 1e-15 && std::log(2.0 / 3) - 1e-15 <= sg.log_upper()));
   const auto ovl = query(a, cyl({1, 0, 0}, {1, 0, 1}, 1));
   BOOST_TEST(to_string(ovl.answer) == "overlapping");
   // phi* = (r0 + r1) / 1 = 2.
-  BOOST_TEST((ovl.phi_lower <= 2 && 2 <= ovl.phi_upper));
+  const certcyl::CylinderGap og = ovl.gap();
+  BOOST_TEST(og.known);
+  BOOST_TEST((og.phi_lower <= 2 && 2 <= og.phi_upper));
   check_invariance(a, cyl({3, 0, 0}, {3, 0, 1}, 1), Answer::separated);
   check_invariance(a, cyl({1, 0, 0}, {1, 0, 1}, 1), Answer::overlapping);
 }
@@ -62,7 +65,7 @@ BOOST_AUTO_TEST_CASE(equal_midpoints_overlap) {
   const auto r = query(a, b);
   BOOST_TEST(to_string(r.answer) == "overlapping");
   BOOST_TEST(to_string(r.stage) == "midpoints");
-  BOOST_TEST(!r.gap_known);
+  BOOST_TEST(!r.gap().known);
   BOOST_TEST((*r.witness == Point3<Q>{0, 0, 0}));
 }
 
@@ -93,7 +96,7 @@ BOOST_AUTO_TEST_CASE(contact_types_touch_and_move) {
           const Vec3<Q> x = cross(r.contact->normal, c.normal);
           BOOST_TEST((x == Vec3<Q>{0, 0, 0}));
         }
-        BOOST_TEST((r.gap_known && r.phi_lower == 1 && r.phi_upper == 1));
+        BOOST_TEST((r.gap().known && r.gap().phi_lower == 1 && r.gap().phi_upper == 1));
         // Swapped, the features swap.
         const auto s = query(c.b, c.a);
         BOOST_TEST(to_string(s.answer) == "touching");

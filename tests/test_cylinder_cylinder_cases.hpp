@@ -144,16 +144,17 @@ inline std::string certificate_error(const Cylinder<Q>& a, const Cylinder<Q>& b,
   const auto direction = r.exact_direction();
   const auto witness = r.exact_witness();
   using certcyl::Answer;
+  const certcyl::CylinderGap gap = r.gap();
   switch (r.answer) {
     case Answer::separated:
       if (!direction) return "separated without a direction";
       if (separation_sign_core(a, b, *direction) <= 0) return "direction does not separate";
-      if (r.gap_known && !(r.phi_lower < 1)) return "separated but phi_lower >= 1";
+      if (gap.known && !(gap.phi_lower < 1)) return "separated but phi_lower >= 1";
       return "";
     case Answer::overlapping:
       if (!witness) return "overlapping without a witness";
       if (position(*witness, a) != 1 || position(*witness, b) != 1) return "witness not interior to both";
-      if (r.gap_known && !(r.phi_upper > 1)) return "overlapping but phi_upper <= 1";
+      if (gap.known && !(gap.phi_upper > 1)) return "overlapping but phi_upper <= 1";
       return "";
     case Answer::touching:
       if (!direction || !witness || !r.contact) return "touching without a contact";
@@ -161,7 +162,7 @@ inline std::string certificate_error(const Cylinder<Q>& a, const Cylinder<Q>& b,
       if (position(*witness, a) < 0 || position(*witness, b) < 0) return "contact point not in both";
       return "";
     case Answer::undecided:
-      if (!r.gap_known || !(r.phi_lower <= 1 && 1 <= r.phi_upper)) return "undecided without a bound containing 1";
+      if (!gap.known || !(gap.phi_lower <= 1 && 1 <= gap.phi_upper)) return "undecided without a bound containing 1";
       return "";
   }
   return "unknown answer";

@@ -145,23 +145,31 @@ BOOST_AUTO_TEST_CASE(random_pairs_against_independent_checks) {
     BOOST_TEST_CONTEXT("pair " << i << " seed " << kSeed) {
       BOOST_TEST(certificate_error(a, b, r) == "");
       BOOST_TEST(to_string(r.answer) != "undecided");
-      BOOST_TEST(r.gap_known);
+      const certcyl::CylinderGap gap = r.gap();
+      BOOST_TEST(gap.known);
+      // The enclosure computed in the query is the one gap() computes on access; off, none.
+      certcyl::CylinderCylinderOptions in_query, off;
+      in_query.gap_enclosure = certcyl::GapEnclosure::in_query;
+      off.gap_enclosure = certcyl::GapEnclosure::off;
+      const certcyl::CylinderGap eager = certified_cylinder_cylinder(p.a, p.b, in_query).gap();
+      BOOST_TEST((eager.known == gap.known && eager.phi_lower == gap.phi_lower && eager.phi_upper == gap.phi_upper));
+      BOOST_TEST(!certified_cylinder_cylinder(p.a, p.b, off).gap().known);
       BOOST_TEST(to_string(certified_cylinder_cylinder(p.a, p.b).answer) == to_string(r.answer));
       BOOST_TEST(to_string(certified_cylinder_cylinder(b, a).answer) == to_string(r.answer));
-      if (!r.gap_known) continue;
+      if (!gap.known) continue;
       const double rmin = brute_min_ratio(p, g), smin = brute_min_sigma(p, g);
       // No contradicting evidence (beyond rounding), ever.
       if (r.answer == Answer::separated) BOOST_TEST(smin > 1 - 1e-12);
       if (r.answer == Answer::overlapping) BOOST_TEST(rmin > 1 - 1e-12);
       // The enclosure contains what the brute force proves: phi* <= rmin and phi* >= 1/smin.
-      BOOST_TEST(r.phi_lower <= rmin * (1 + 1e-12));
-      BOOST_TEST(1 / smin <= r.phi_upper * (1 + 1e-12));
+      BOOST_TEST(gap.phi_lower <= rmin * (1 + 1e-12));
+      BOOST_TEST(1 / smin <= gap.phi_upper * (1 + 1e-12));
       // At clear margins the brute force finds supporting evidence.
-      if (r.phi_upper < 0.99) {
+      if (gap.phi_upper < 0.99) {
         ++clear;
         BOOST_TEST(rmin < 1 - 1e-9);
       }
-      if (r.phi_lower > 1.01) {
+      if (gap.phi_lower > 1.01) {
         ++clear;
         BOOST_TEST(smin < 1 - 1e-9);
       }
@@ -389,16 +397,21 @@ Pair scaled(const Pair& p, int k) {
   return {p.a.map(sc), p.b.map(sc)};
 }
 
-// The quick path's frame: w = 2^j with (sum of the magnitudes) / w in [1, 2).
+// The quick path's frame (cd::quick_frame), checked against its definition: w = 2^j with
+// max |x| / w in [1, 2) over the fourteen numbers.
 double quick_frame(const Pair& p) {
   double m = 0;
   for (const Cylinder<double>* c : {&p.a, &p.b})
-    for (double x : {c->p0.x, c->p0.y, c->p0.z, c->p1.x, c->p1.y, c->p1.z, c->radius}) m += std::abs(x);
-  return 1 / cd::power_of_two_normaliser(m);
+    for (double x : {c->p0.x, c->p0.y, c->p0.z, c->p1.x, c->p1.y, c->p1.z, c->radius}) m = std::max(m, std::abs(x));
+  int e = 0;
+  std::frexp(m, &e);  // m = f 2^e, f in [1/2, 1)
+  const double w = std::ldexp(1.0, e - 1);
+  BOOST_TEST(cd::quick_frame(p.a, p.b) == w);
+  return w;
 }
 
 struct QuickTally {
-  int separated = 0, not_separated = 0, inside = 0, not_inside = 0, lower_bounds = 0;
+  int separated = 0, by_radius_sum = 0, not_separated = 0, inside = 0, not_inside = 0, lower_bounds = 0;
 };
 
 // quick_separation: when it says separated, D separates exactly; its phi bound is an upper bound
@@ -413,6 +426,18 @@ void check_quick_direction(const Pair& p, QuickTally& t) {
   cd::QuickSeparation s2;
   BOOST_TEST(cd::quick_separation(p.a, p.b, w, false, s2) == separated);  // the bounds change nothing
   const Vec3<Q> D = exact(s.direction);
+  BOOST_TEST(s2.by_radius_sum == s.by_radius_sum);
+  BOOST_TEST((!s.by_radius_sum || separated));
+  if (s.by_radius_sum) {
+    // The sufficient test's own claim, exactly: c* = |D.T*| - |D.A0| - |D.A1| > 0 and
+    // c*^2 > 4 (r0 + r1)^2 D.D.
+    ++t.by_radius_sum;
+    const auto abs_q = [](const Q& x) { return x < 0 ? Q(-x) : x; };
+    const Q c = abs_q(dot(D, q.T)) - abs_q(dot(D, q.A0)) - abs_q(dot(D, q.A1));
+    const Q rs = q.c0.radius + q.c1.radius;
+    BOOST_TEST(c > 0);
+    BOOST_TEST(c * c > 4 * rs * rs * dot(D, D));
+  }
   if (separated) {
     ++t.separated;
     BOOST_TEST(cd::separation_sign(q, D) == CGAL::POSITIVE);
@@ -469,7 +494,7 @@ BOOST_AUTO_TEST_CASE(quick_filters_never_contradict_gmpq) {
   BOOST_TEST_MESSAGE("seed " << kSeed + 4);
   std::mt19937_64 g(kSeed + 4);
   std::uniform_real_distribution<double> u(-1, 1), unit(0, 1);
-  QuickTally clear, near, points, near_points;
+  QuickTally clear, near, near_radius_sum, points, near_points;
   for (int i = 0; i < 1500; ++i) {
     const int k = std::array<int, 5>{-90, -40, 0, 40, 90}[i % 5];
     const Pair p = scaled(Pair{random_cylinder(g), random_cylinder(g)}, k);
@@ -486,6 +511,12 @@ BOOST_AUTO_TEST_CASE(quick_filters_never_contradict_gmpq) {
         const double t = (f - 1) / 2;
         const Pair m{p.a, {p.b.p0 + t * T, p.b.p1 + t * T, p.b.radius}};
         check_quick_direction(m, near);
+        // The same at the threshold of the sufficient test, c* = 2 (r0 + r1) |T'| (1 + delta):
+        // (1 + 2t) |T|^2 = (|T.A0| + |T.A1| + 2 (r0 + r1) |T|)(1 + delta).
+        const D3 A0 = p.a.p1 - p.a.p0, A1 = p.b.p1 - p.b.p0;
+        const double bound = std::abs(dot(T, A0)) + std::abs(dot(T, A1)) + 2 * (p.a.radius + p.b.radius) * std::sqrt(TT);
+        const double t2 = (bound * (1 + delta) / TT - 1) / 2;
+        check_quick_direction(Pair{p.a, {p.b.p0 + t2 * T, p.b.p1 + t2 * T, p.b.radius}}, near_radius_sum);
       }
     }
     // Points: the inset closest points' division point and midpoint, random points, points on
@@ -504,15 +535,21 @@ BOOST_AUTO_TEST_CASE(quick_filters_never_contradict_gmpq) {
         check_quick_point(p, X, near_points);
     }
   }
-  BOOST_TEST_MESSAGE("clear: separated " << clear.separated << ", not " << clear.not_separated << ", lower bounds "
-                                         << clear.lower_bounds << "; near: separated " << near.separated << ", not "
-                                         << near.not_separated);
+  BOOST_TEST_MESSAGE("clear: separated " << clear.separated << " (by the radius sum " << clear.by_radius_sum << "), not "
+                                         << clear.not_separated << ", lower bounds " << clear.lower_bounds << "; near: separated "
+                                         << near.separated << ", not " << near.not_separated << "; near the radius-sum test: by it "
+                                         << near_radius_sum.by_radius_sum << ", not " << near_radius_sum.separated - near_radius_sum.by_radius_sum
+                                         << " + " << near_radius_sum.not_separated);
   BOOST_TEST_MESSAGE("points: inside " << points.inside << ", not " << points.not_inside << "; near: inside "
                                        << near_points.inside << ", not " << near_points.not_inside);
   // The sets exercise both outcomes (the filters are not vacuous).
   BOOST_TEST(clear.separated > 500);
   BOOST_TEST(near.separated > 100);
   BOOST_TEST(near.not_separated > 100);
+  BOOST_TEST(clear.by_radius_sum > 300);
+  BOOST_TEST(near_radius_sum.by_radius_sum > 100);
+  BOOST_TEST(near_radius_sum.separated - near_radius_sum.by_radius_sum > 100);  // declined, decided by the test itself
+  BOOST_TEST(near_radius_sum.lower_bounds > 100);
   BOOST_TEST(points.inside > 100);
   BOOST_TEST(clear.lower_bounds > 1000);
 }

@@ -26,12 +26,14 @@
 // Stages, in order; the first that proves an answer decides (result.stage):
 //   midpoints        Delta = 0: the common midpoint is interior to both.
 //   fast_path        binary64 input first takes the quick path (detail/cylinder_quick_filter.hpp):
-//                    the direction Delta (as T = 2 Delta), then the r0:r1 point and the midpoint of the closest
-//                    points of the axes inset by half a radius from the caps, each checked by a
-//                    static filter whose error bounds are fixed in advance (no copy, no scaling,
-//                    no allocation); it decides about nine random pairs in ten in a few dozen
-//                    floating-point operations. Then cheap candidates, evaluated in double: directions Delta, its parts orthogonal
-//                    to each axis, A0 x A1, the difference of the closest points of the axis
+//                    the direction Delta (as T = 2 Delta; first by a sufficient test without
+//                    division or square root), then the r0:r1 point and the midpoint of the
+//                    closest points of the axes inset by half a radius from the caps, each checked
+//                    by a static filter whose error bounds are fixed in advance (no copy, no
+//                    scaling, no allocation); it decides about nine random pairs in ten in a few
+//                    dozen floating-point operations, and leaves the gap enclosure to gap().
+//                    Then cheap candidates, evaluated in double: directions Delta, its parts
+//                    orthogonal to each axis, A0 x A1, the difference of the closest points of the axis
 //                    segments, A0, A1; points: the closest points' r0:r1 division point and
 //                    midpoint, m0, m1, the closest point on axis 0; when none of them is interior
 //                    and no direction separates, up to 12 rounds of alternating projections onto
@@ -48,8 +50,8 @@
 //   gmpfr            the optimiser at 128, 256, ... bits up to options.max_precision; its direction
 //                    and point, converted exactly to rationals, are checked in Gmpq, and its
 //                    direction is reconstructed as a candidate normal for a touching proof.
-// Undecided results carry the certified bounds phi_lower <= phi* <= phi_upper, so
-// |phi* - 1| <= distance_bound().
+// Undecided results carry the certified bounds gap().phi_lower <= phi* <= gap().phi_upper, so
+// |phi* - 1| <= gap().distance_bound().
 //
 // Touching is proved for every contact type: with rational data every touching pair touches with
 // a rational normal at a rational point (the theorem of detail/cylinder_rim_contacts.hpp), and
@@ -112,18 +114,28 @@ inline constexpr std::string_view to_string(CylinderArithmetic a) {
   return "none";
 }
 
+// When the certified enclosure of phi* (CylinderCylinderResult::gap()) is computed.
+//   off        never: gap().known is false.
+//   on_access  the stages after the quick path record it as they go (it costs them little); an
+//              answer of the quick path keeps its binary64 input instead, and gap() computes the
+//              enclosure from it on each call (about the cost of the quick path again), so a
+//              query whose enclosure is not read does not pay for it.
+//   in_query   the quick path computes it too, during the query: cheaper than on_access when the
+//              enclosure is always read, dearer when it is not.
+enum class GapEnclosure { off, on_access, in_query };
+
 struct CylinderCylinderOptions {
   // The Gmpfr stage runs at 128, 256, ... bits while the precision is at most this; 0 skips it.
   long max_precision = 1024;
   // Try the exact touching proofs (stages touching_exact and the reconstruction in gmpfr).
   bool prove_touching = true;
-  // Compute a certified enclosure of phi* from the candidates the deciding stage evaluates: on
-  // the fast path, the direction Delta and the segment between the midpoints (exact for two
-  // balls), or the witness point; its width varies with the pair. Costs little.
-  bool gap_enclosure = true;
+  // The certified enclosure of phi* (GapEnclosure), from the candidates the deciding stage
+  // evaluates: on the fast path, the direction Delta and the segment between the midpoints
+  // (exact for two balls), or the witness point; its width varies with the pair.
+  GapEnclosure gap_enclosure = GapEnclosure::on_access;
   // Rank every cheap candidate of the fast path (seven directions, five points) and certify the
-  // best, for a tighter enclosure; about twice the cost of the fast path on ordinary pairs.
-  // Only with gap_enclosure.
+  // best, for a tighter enclosure computed in the query (the quick path is skipped); about five
+  // times the cost of the quick path on ordinary pairs. Only when gap_enclosure is not off.
   bool refine_gap = false;
   // Also fill the Rational certificate fields (direction, witness) when the certificate is a
   // binary64 vector. Off: it is given only in direction_binary64 / witness_binary64 (the same
@@ -144,7 +156,38 @@ struct CylinderCylinderCounters {
   std::uint32_t touching_candidates = 0;  // candidate normals given to the touching proof
 };
 
+// A certified enclosure phi_lower <= phi* <= phi_upper, and so of the signed gap log(phi*).
+struct CylinderGap {
+  // False when Delta = 0 (phi* is undefined: the cylinders overlap at every scale), when
+  // options.gap_enclosure is GapEnclosure::off, or when no finite bound was found (input whose
+  // binary64 range exceeds what the scaled frame can hold exactly, so intervals overflow or
+  // underflow); the numbers are then meaningless.
+  bool known = false;
+  double phi_lower = 0, phi_upper = 0;
+
+  // The enclosure of log(phi*): std::log is within one ulp; two steps outward make it safe.
+  double log_lower() const {
+    return phi_lower == 1 ? 0 : std::nextafter(std::nextafter(std::log(phi_lower), -HUGE_VAL), -HUGE_VAL);
+  }
+  double log_upper() const {
+    return phi_upper == 1 ? 0 : std::nextafter(std::nextafter(std::log(phi_upper), HUGE_VAL), HUGE_VAL);
+  }
+  // A certified bound on |phi* - 1|.
+  double distance_bound() const { return std::max(phi_upper - 1, 1 - phi_lower); }
+};
+
+struct CylinderCylinderResult;
+namespace detail {
+class CylinderCylinderSolver;
+inline bool quick_answer(const Cylinder<double>& c0, const Cylinder<double>& c1, const CylinderCylinderOptions& options,
+                         CylinderCylinderResult& r);
+}  // namespace detail
+
 struct CylinderCylinderResult {
+  // User-provided, so that the members are initialised one by one: GCC clears a whole object
+  // of this size with `rep stos`, which costs about as much as the quick path itself.
+  CylinderCylinderResult() noexcept {}
+
   Answer answer = Answer::undecided;
   CylinderStage stage = CylinderStage::none;
   CylinderArithmetic certified_by = CylinderArithmetic::none;
@@ -160,27 +203,15 @@ struct CylinderCylinderResult {
   // touching only: the features that meet, the normal and a common point.
   std::optional<CylinderContact> contact;
 
-  // Certified phi_lower <= phi* <= phi_upper and log_gap_lower() <= log(phi*) <= log_gap_upper().
-  // gap_known is false when Delta = 0 (phi* is undefined: the cylinders overlap at every scale),
-  // when options.gap_enclosure is off, or when no finite bound was found (input whose binary64
-  // range exceeds what the scaled frame can hold exactly, so intervals overflow or underflow);
-  // the four numbers are then meaningless.
-  bool gap_known = false;
-  double phi_lower = 0, phi_upper = 0;
-  // The enclosure of log(phi*): std::log is within one ulp; two steps outward make it safe.
-  double log_gap_lower() const {
-    return phi_lower == 1 ? 0 : std::nextafter(std::nextafter(std::log(phi_lower), -HUGE_VAL), -HUGE_VAL);
-  }
-  double log_gap_upper() const {
-    return phi_upper == 1 ? 0 : std::nextafter(std::nextafter(std::log(phi_upper), HUGE_VAL), HUGE_VAL);
-  }
+  // The certified enclosure of phi* and log(phi*) (CylinderGap). For an answer of the quick path
+  // with GapEnclosure::on_access it is computed here, on each call, from the input the answer
+  // keeps (about the cost of the quick path again: keep the value); otherwise it was recorded by
+  // the query.
+  CylinderGap gap() const;
 
   long gmpfr_precision = 0;  // highest Gmpfr precision used, 0 if none
   CylinderCylinderCounters counters;
   std::array<double, kCylinderStages> stage_seconds{};  // indexed by CylinderStage; zero unless time_stages
-
-  // A certified bound on |phi* - 1| (meaningful when gap_known).
-  double distance_bound() const { return std::max(phi_upper - 1, 1 - phi_lower); }
 
   // The certificates as exact rationals, whichever field holds them.
   std::optional<Vec3<Rational>> exact_direction() const {
@@ -193,6 +224,15 @@ struct CylinderCylinderResult {
     if (witness_binary64) return witness_binary64->map([](double x) { return Rational(x); });
     return std::nullopt;
   }
+
+ private:
+  friend class detail::CylinderCylinderSolver;
+  friend bool detail::quick_answer(const Cylinder<double>&, const Cylinder<double>&, const CylinderCylinderOptions&,
+                                   CylinderCylinderResult&);
+  CylinderGap gap_;  // recorded by the query
+  // An answer of the quick path with GapEnclosure::on_access: its binary64 input, for gap().
+  bool quick_gap_ = false;
+  std::array<Cylinder<double>, 2> quick_input_{};
 };
 
 namespace detail {
@@ -354,6 +394,8 @@ class CylinderCylinderSolver {
     return X.map([this](double x) { return times_two_power(Rational(x), -world_exponent_); });
   }
 
+  bool gap_on() const { return options_.gap_enclosure != GapEnclosure::off; }
+
   // ---- stage bookkeeping ----------------------------------------------------------------------
   // One clock reading per stage boundary (when timing is on): a stage starts when the previous
   // one ends.
@@ -381,12 +423,9 @@ class CylinderCylinderSolver {
 
   CylinderCylinderResult finish() {
     if (result_.answer == Answer::touching) {
-      result_.phi_lower = result_.phi_upper = 1;
-      result_.gap_known = true;
-    } else if (options_.gap_enclosure && !coincident_ && phi_upper_ && phi_lower_ > 0) {
-      result_.gap_known = true;
-      result_.phi_lower = phi_lower_;
-      result_.phi_upper = *phi_upper_;
+      result_.gap_ = {true, 1, 1};
+    } else if (gap_on() && !coincident_ && phi_upper_ && phi_lower_ > 0) {
+      result_.gap_ = {true, phi_lower_, *phi_upper_};
     }
     return std::move(result_);
   }
@@ -463,7 +502,7 @@ class CylinderCylinderSolver {
   }
 
   void bound_by_direction(Vec3<double> D, const StaticDirection* terms = nullptr) {
-    if (!options_.gap_enclosure || !finite(D)) return;
+    if (!gap_on() || !finite(D)) return;
     if (static_ok_) {
       if (terms) return lower_phi_upper(static_ratio_upper(*terms));
       const double s = power_of_two_normaliser(std::max({std::abs(D.x), std::abs(D.y), std::abs(D.z)}));
@@ -472,7 +511,7 @@ class CylinderCylinderSolver {
     bound_by_direction(to_iv(D));
   }
   void bound_by_direction(const Vec3<Interval>& D) {
-    if (!options_.gap_enclosure) return;
+    if (!gap_on()) return;
     const CylinderPair<Interval>& d = iv();
     CGAL::Protect_FPU_rounding<true> upward;
     const std::optional<Interval> r = ratio_enclosure(d, D);
@@ -480,13 +519,13 @@ class CylinderCylinderSolver {
   }
 
   void bound_by_point(const Point3<double>& X, const StaticPoint* values = nullptr) {
-    if (!options_.gap_enclosure || !finite(X)) return;
+    if (!gap_on() || !finite(X)) return;
     if (static_ok_) return raise_phi_lower(static_sigma_upper(stat_, values ? *values : static_point(stat_, X)));
     bound_by_point(to_iv(X));
   }
   // X: world frame.
   void bound_by_point(const Point3<Interval>& X) {
-    if (!options_.gap_enclosure) return;
+    if (!gap_on()) return;
     const CylinderPair<Interval>& d = iv();
     CGAL::Protect_FPU_rounding<true> upward;
     const Interval s = scale_enclosure(d, X);
@@ -496,7 +535,7 @@ class CylinderCylinderSolver {
   }
   // The segment between the midpoints (static_segment_phi_lower); needs the filter.
   void bound_by_segment() {
-    if (!options_.gap_enclosure || !static_ok_) return;
+    if (!gap_on() || !static_ok_) return;
     const double lower = static_segment_phi_lower(stat_);
     if (lower > phi_lower_) phi_lower_ = lower;
   }
@@ -613,7 +652,7 @@ class CylinderCylinderSolver {
   // Then, when no point is interior although no direction separates, alternating projections.
   bool fast_path() {
     begin(CylinderStage::fast_path);
-    if (options_.refine_gap && options_.gap_enclosure) return fast_path_ranked();
+    if (options_.refine_gap && gap_on()) return fast_path_ranked();
     const CylinderPair<double>& d = dbl_;
     const double k0 = 4 * d.c0.radius * d.c0.radius / d.AA0, k1 = 4 * d.c1.radius * d.c1.radius / d.AA1;
     std::optional<StaticDirection> t_terms;  // the static values of T, scaled (for phi_upper)
@@ -628,14 +667,14 @@ class CylinderCylinderSolver {
         if (static_separation_sign(*t_terms) == StaticSign::positive) {
           ++result_.counters.static_decisions;
           last_check_ = CylinderArithmetic::static_filter;
-          if (options_.gap_enclosure) lower_phi_upper(static_ratio_upper(*t_terms));
+          if (gap_on()) lower_phi_upper(static_ratio_upper(*t_terms));
           bound_by_segment();
           return separated_by(D);
         }
       }
     }
     const auto bound_upper_by_t = [&] {
-      if (!options_.gap_enclosure) return;
+      if (!gap_on()) return;
       if (t_terms) return lower_phi_upper(static_ratio_upper(*t_terms));
       bound_by_direction(d.T);
     };
@@ -664,7 +703,7 @@ class CylinderCylinderSolver {
       if (!(r < 1)) continue;
       std::optional<StaticDirection> terms;
       if (check_direction(D, &terms) == CGAL::POSITIVE) {
-        if (options_.gap_enclosure) {
+        if (gap_on()) {
           bound_by_direction(D, terms ? &*terms : nullptr);
           bound_by_segment();
           bound_by_point(X);
@@ -882,11 +921,26 @@ class CylinderCylinderSolver {
   bool started_ = false;
 };
 
+// The enclosures of the quick path's answers, from QuickSeparation's bounds (bounds asked for):
+// the upper bound of phi* from T; the lower bound from the segment between the midpoints for a
+// separated pair, or from the witness X (1 / sigma(X) <= phi*, with sigma_upper >= sigma(X),
+// rounded down: fl(rho' fl(1 / s)) <= rho' (1 + u)^2 / s <= 1 / s) for an overlapping one.
+inline CylinderGap quick_gap_separated(const QuickSeparation& q) {
+  if (q.phi_lower > 0 && std::isfinite(q.phi_upper)) return {true, q.phi_lower, q.phi_upper};
+  return {};
+}
+inline CylinderGap quick_gap_overlapping(const QuickSeparation& q, double sigma_upper) {
+  if (std::isfinite(q.phi_upper) && sigma_upper > 0 && std::isfinite(sigma_upper))
+    return {true, kStaticRoundDown * (1 / sigma_upper), q.phi_upper};
+  return {};
+}
+
 // The quick path's overlap: the r0:r1 division point of the closest points of the axis segments,
-// then their midpoint, proved strictly inside both by detail/cylinder_quick_filter.hpp; q holds
-// Delta's upper bound of phi*. Fills the answer's own fields; quick_answer the common ones.
-inline bool quick_overlap(const Cylinder<double>& c0, const Cylinder<double>& c1, double w, const QuickSeparation& q,
-                          const CylinderCylinderOptions& options, CylinderCylinderResult& r) {
+// then their midpoint, proved strictly inside both by detail/cylinder_quick_filter.hpp. Fills the
+// answer's own fields (quick_answer the common ones) and sigma_upper, quick_point's bound of the
+// witness's scale.
+inline bool quick_overlap(const Cylinder<double>& c0, const Cylinder<double>& c1, double w, const CylinderCylinderOptions& options,
+                          CylinderCylinderResult& r, double& sigma_upper) {
   // Closest points of the axes inset by half a radius from the caps: the division point then
   // lies off the cap planes (it decides about four overlapping random pairs in five).
   const Vec3<double> A0 = c0.p1 - c0.p0, A1 = c1.p1 - c1.p0;
@@ -906,57 +960,69 @@ inline bool quick_overlap(const Cylinder<double>& c0, const Cylinder<double>& c1
   r.witness_binary64 = X;
   if (options.rational_certificates) r.witness = X.map([](double x) { return Rational(x); });
   r.counters.points_checked = points;
-  if (options.gap_enclosure && std::isfinite(q.phi_upper) && p.sigma_upper > 0 && std::isfinite(p.sigma_upper)) {
-    // fl(rho' fl(1 / s)) <= rho' (1 + u)^2 / s <= 1 / s <= phi*.
-    r.gap_known = true;
-    r.phi_lower = kStaticRoundDown * (1 / p.sigma_upper);
-    r.phi_upper = q.phi_upper;
-  }
+  sigma_upper = p.sigma_upper;
   return true;
 }
 
 // The quick path: binary64 input, and the direction Delta proved to separate, or a cheap point
-// proved interior (quick_overlap), by the static filters of detail/cylinder_quick_filter.hpp. Returns false, leaving r untouched, when that does
-// not apply (invalid, non-finite or extreme input included: the caller validates afterwards) or
-// does not decide; the solver then runs from the start.
+// proved interior (quick_overlap), by the static filters of detail/cylinder_quick_filter.hpp.
+// Returns false, leaving r untouched, when that does not apply (invalid, non-finite or extreme
+// input included: the caller validates afterwards) or does not decide; the solver then runs
+// from the start. The gap enclosure as options.gap_enclosure says (GapEnclosure).
 inline bool quick_answer(const Cylinder<double>& c0, const Cylinder<double>& c1, const CylinderCylinderOptions& options,
                          CylinderCylinderResult& r) {
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = options.time_stages ? Clock::now() : Clock::time_point{};
-  // The frame (cylinder_quick_filter.hpp): w = 2^k with sum |x| / w in [1, 2); the sum is not
-  // finite when some number is not.
-  const auto magnitude = [](const Cylinder<double>& c) {
-    return ((std::abs(c.p0.x) + std::abs(c.p0.y)) + (std::abs(c.p0.z) + std::abs(c.p1.x))) +
-           ((std::abs(c.p1.y) + std::abs(c.p1.z)) + c.radius);
-  };
-  if (options.refine_gap && options.gap_enclosure) return false;  // the ranked fast path instead
+  if (options.refine_gap && options.gap_enclosure != GapEnclosure::off) return false;  // the ranked fast path instead
   if (!(c0.radius > 0 && c1.radius > 0)) return false;
-  const double normaliser = power_of_two_normaliser(magnitude(c0) + magnitude(c1));
-  if (!(normaliser >= 0x1p-100 && normaliser <= 0x1p100)) return false;
-  const double w = 1 / normaliser;
+  // The frame (cylinder_quick_filter.hpp): w = 2^k with every number below 2w in magnitude; 0
+  // for non-finite or extreme input.
+  const double w = quick_frame(c0, c1);
+  if (w == 0) return false;
+  const bool in_query = options.gap_enclosure == GapEnclosure::in_query;
   QuickSeparation q;
-  if (quick_separation(c0, c1, w, options.gap_enclosure, q)) {
+  double sigma_upper = 0;
+  if (quick_separation(c0, c1, w, in_query, q)) {
     r.answer = Answer::separated;
     r.direction_binary64 = q.direction;
     if (options.rational_certificates) r.direction = q.direction.map([](double x) { return Rational(x); });
-    if (options.gap_enclosure && q.phi_lower > 0 && std::isfinite(q.phi_upper)) {
-      r.gap_known = true;
-      r.phi_lower = q.phi_lower;
-      r.phi_upper = q.phi_upper;
-    }
-  } else if (!quick_overlap(c0, c1, w, q, options, r)) {
+    if (in_query) r.gap_ = quick_gap_separated(q);
+  } else if (quick_overlap(c0, c1, w, options, r, sigma_upper)) {
+    if (in_query) r.gap_ = quick_gap_overlapping(q, sigma_upper);
+  } else {
     return false;
   }
   r.stage = CylinderStage::fast_path;
   r.certified_by = CylinderArithmetic::static_filter;
   r.counters.directions_checked = 1;
   r.counters.static_decisions = 1;
+  if (options.gap_enclosure == GapEnclosure::on_access) {
+    r.quick_gap_ = true;
+    r.quick_input_[0] = c0;
+    r.quick_input_[1] = c1;
+  }
   if (options.time_stages)
     r.stage_seconds[static_cast<std::size_t>(CylinderStage::fast_path)] = std::chrono::duration<double>(Clock::now() - start).count();
   return true;
 }
 
+// The enclosure of an answer of the quick path, from its input (GapEnclosure::on_access): the
+// same numbers as GapEnclosure::in_query gives.
+inline CylinderGap quick_gap(const Cylinder<double>& c0, const Cylinder<double>& c1, Answer answer,
+                             const std::optional<Point3<double>>& witness) {
+  const double w = quick_frame(c0, c1);
+  QuickSeparation q;
+  quick_separation(c0, c1, w, true, q);
+  if (answer == Answer::separated) return quick_gap_separated(q);
+  if (witness) return quick_gap_overlapping(q, quick_point(c0, c1, w, *witness).sigma_upper);
+  return {};
+}
+
 }  // namespace detail
+
+inline CylinderGap CylinderCylinderResult::gap() const {
+  return quick_gap_ ? detail::quick_gap(quick_input_[0], quick_input_[1], answer, witness_binary64) : gap_;
+}
 
 // The certified test-intersection of two cylinders (header comment). Throws InvalidInput on an
 // invalid cylinder (field "a" or "b").

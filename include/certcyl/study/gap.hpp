@@ -211,15 +211,16 @@ inline void certify(Instance& inst, const CylinderCylinderOptions& cyl_options =
     case Query::cylinder_cylinder: {
       const CylinderCylinderResult r = certified_cylinder_cylinder(cylinder_at(x, 0), cylinder_at(x, 7), cyl_options);
       inst.certified = r.answer;
-      if (r.gap_known) {
-        inst.gap_lo = r.log_gap_lower();
-        inst.gap_hi = r.log_gap_upper();
+      const CylinderGap gap = r.gap();
+      if (gap.known) {
+        inst.gap_lo = gap.log_lower();
+        inst.gap_hi = gap.log_upper();
       } else {
         inst.gap_lo = inst.gap_hi = std::numeric_limits<double>::infinity();
       }
       // The enclosure must allow the answer's sign (touching: it contains 0).
       const Answer a = r.answer;
-      inst.certified_ok = a == Answer::undecided || !r.gap_known ||
+      inst.certified_ok = a == Answer::undecided || !gap.known ||
                           (a == Answer::separated && inst.gap_lo < 0) || (a == Answer::overlapping && inst.gap_hi > 0) ||
                           (a == Answer::touching && inst.gap_lo <= 0 && inst.gap_hi >= 0);
       return;
