@@ -10,8 +10,9 @@
 // `--first i --cases 1` reproduces case i. --progress prints counts to stderr every SECONDS
 // (failures are printed there as they are found, with their exact input);
 // --profile (cylinder pairs) prints where the time goes, per kind of case and per stage.
-// Prints cases, re-checked answers, wrong answers and crashes per query; exits 1 if any answer
-// was wrong or any query threw.
+// Prints whether assertions are on, then cases, re-checked answers, wrong answers and crashes per
+// query; exits 1 if any answer was wrong or any query threw. scripts/crosscheck.sh builds it with
+// CGAL's and the standard library's assertions on and runs it.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -161,6 +162,13 @@ void print_profile(std::ostream& out, const Stats& s) {
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
   const std::uint64_t begin = o.first + o.cases * o.shard / o.shards, end = o.first + o.cases * (o.shard + 1) / o.shards;
+  // Whether CGAL's assertions and preconditions (and assert) can fire in this build: a failing
+  // one throws inside a query, which counts as a crash (scripts/crosscheck.sh builds with them).
+#ifdef CGAL_NO_ASSERTIONS
+  std::cout << "assertions: off (NDEBUG)\n";
+#else
+  std::cout << "assertions: on\n";
+#endif
   bool bad = false;
   const auto run = [&](const std::string& name, std::uint64_t offset, auto check_case) {
     if (o.query != "all" && o.query != name) return;
