@@ -26,7 +26,9 @@
 //   cylinder pair        A separating direction D is re-evaluated: phi(D) < D.Delta, i.e.
 //                        c > sqrt(p) + sqrt(q), decided by the squaring rule; a touching normal
 //                        gives equality there, and its point lies on both boundaries on the
-//                        claimed features; an overlapping witness is strictly inside both.
+//                        claimed features; an overlapping witness is strictly inside both. The
+//                        gap enclosure is checked against the answer and the certificates
+//                        (check_cylinder_gap).
 // Each check returns an empty string when it holds, otherwise what failed.
 #pragma once
 
@@ -34,6 +36,7 @@
 #include <CGAL/Gmpz.h>
 
 #include <array>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -439,11 +442,12 @@ inline std::string check_triangle(const Triangle<Q>& T, const Cylinder<Q>& C, co
 // c - sqrt(p) - sqrt(q) with c = |D.Delta| - |D.A0|/2 - |D.A1|/2, p = r0^2 |D x A0|^2 / A0.A0, q
 // likewise, by the squaring rule: c < 0 gives negative; otherwise compare c^2 - p - q with
 // 2 sqrt(pq), i.e. its sign and then (c^2 - p - q)^2 with 4 p q.
-inline CGAL::Sign separation_margin(const Cylinder<Q>& a, const Cylinder<Q>& b, const V& D) {
+// With a factor k: the sign of k |D.Delta| - phi(D) (c = k |D.Delta| - ...).
+inline CGAL::Sign separation_margin(const Cylinder<Q>& a, const Cylinder<Q>& b, const V& D, const Q& k = Q(1)) {
   const V A0 = a.p1 - a.p0, A1 = b.p1 - b.p0;
   const V Delta = (b.p0 + b.p1 - a.p0 - a.p1) / Q(2);
   const auto absq = [](const Q& x) { return x < 0 ? Q(-x) : x; };
-  const Q c = absq(dot(D, Delta)) - absq(dot(D, A0)) / Q(2) - absq(dot(D, A1)) / Q(2);
+  const Q c = k * absq(dot(D, Delta)) - absq(dot(D, A0)) / Q(2) - absq(dot(D, A1)) / Q(2);
   const V x0 = cross(D, A0), x1 = cross(D, A1);
   const Q p = a.radius * a.radius * dot(x0, x0) / dot(A0, A0);
   const Q q = b.radius * b.radius * dot(x1, x1) / dot(A1, A1);
@@ -465,7 +469,7 @@ inline std::string check_feature(const CylinderFrame& f, const V& X, CylinderFea
   return "bad feature";
 }
 
-inline std::string check_cylinder_pair(const Cylinder<Q>& a, const Cylinder<Q>& b, const CylinderCylinderResult& r) {
+inline std::string check_cylinder_certificate(const Cylinder<Q>& a, const Cylinder<Q>& b, const CylinderCylinderResult& r) {
   // The certificates as exact rationals, whichever field holds them.
   const std::optional<Vec3<Q>> direction = r.exact_direction();
   const std::optional<Point3<Q>> witness = r.exact_witness();
@@ -493,6 +497,46 @@ inline std::string check_cylinder_pair(const Cylinder<Q>& a, const Cylinder<Q>& 
     case Answer::undecided: return "";  // no claim; counted by the callers
   }
   return "bad answer";
+}
+
+// The gap enclosure phi_lower <= phi* <= phi_upper (r.gap(), when known) against the answer and
+// its certificates, exactly. phi* = min phi(D) / |D.Delta| over directions D, and 1 / phi* =
+// min sigma(X) over points X (the factor by which both cylinders, scaled about their midpoints,
+// reach X), so: phi_lower <= phi_upper; a certificate direction D gives phi_lower |D.Delta| <=
+// phi(D); a certificate point X gives phi_upper sigma(X) >= 1, i.e. for some cylinder
+// phi_upper |2 X.A - ...| >= A.A axially or phi_upper^2 |v x A|^2 >= r^2 A.A radially; and the
+// answer's side of 1: separated phi_lower < 1, overlapping phi_upper > 1, touching and
+// undecided phi_lower <= 1 <= phi_upper. Necessary conditions: they catch a wrong bound, they
+// cannot prove a right one.
+inline std::string check_cylinder_gap(const Cylinder<Q>& a, const Cylinder<Q>& b, const CylinderCylinderResult& r) {
+  const CylinderGap g = r.gap();
+  if (!g.known) return "";
+  if (!std::isfinite(g.phi_lower) || !std::isfinite(g.phi_upper)) return "gap enclosure not finite";
+  const Q lo(g.phi_lower), hi(g.phi_upper);
+  if (!(lo <= hi)) return "gap enclosure empty";
+  switch (r.answer) {
+    case Answer::separated: if (!(lo < 1)) return "separated but phi_lower >= 1"; break;
+    case Answer::overlapping: if (!(hi > 1)) return "overlapping but phi_upper <= 1"; break;
+    case Answer::touching:
+    case Answer::undecided: if (!(lo <= 1 && 1 <= hi)) return "enclosure does not contain 1"; break;
+  }
+  if (const std::optional<Vec3<Q>> D = r.exact_direction(); D && !is_zero(*D))
+    if (separation_margin(a, b, *D, lo) == CGAL::POSITIVE) return "phi_lower above the certificate direction's ratio";
+  if (const std::optional<Point3<Q>> X = r.exact_witness()) {
+    bool reached = false;
+    for (const Cylinder<Q>* c : {&a, &b}) {
+      const CylinderFrame f(*c);
+      const Q two_s = 2 * f.axial(*X) - f.AA;
+      reached = reached || hi * (two_s < 0 ? Q(-two_s) : two_s) >= f.AA || hi * hi * f.radial(*X) >= f.R;
+    }
+    if (!reached) return "phi_upper below 1 / sigma of the certificate point";
+  }
+  return "";
+}
+
+inline std::string check_cylinder_pair(const Cylinder<Q>& a, const Cylinder<Q>& b, const CylinderCylinderResult& r) {
+  const std::string e = check_cylinder_certificate(a, b, r);
+  return e.empty() ? check_cylinder_gap(a, b, r) : e;
 }
 
 }  // namespace certcyl::recheck

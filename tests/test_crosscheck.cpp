@@ -109,6 +109,23 @@ BOOST_AUTO_TEST_CASE(recheck_rejects_wrong_answers) {
   BOOST_TEST(recheck::check_cylinder_pair(C, bt, ct) == "");
   BOOST_TEST(recheck::separation_margin(C, bt, V{1, 0, 0}) == CGAL::ZERO);
   BOOST_TEST(recheck::check_cylinder_pair(C, b, ct) != "");  // the contact point is not on b
+
+  // The gap enclosure of (C, b), around phi* = 2/3, checked against b moved to x = 30: the
+  // direction still separates, but phi(D) / |D.Delta| = 1/15 there, below phi_lower.
+  const Cylinder<Q> b_far{{30, -1, 1}, {30, 1, 1}, Q(1)};
+  const CylinderCylinderResult cs = certified_cylinder_cylinder(C, b);
+  BOOST_TEST(recheck::check_cylinder_certificate(C, b_far, cs) == "");
+  BOOST_TEST(recheck::check_cylinder_pair(C, b_far, cs) == "phi_lower above the certificate direction's ratio");
+  // An overlapping pair (axis of b at x = 1, phi* = 2) against both cylinders grown 4 times
+  // about their midpoints: the witness stays inside both, at a quarter of its scale, and
+  // phi_upper no longer reaches 1 / sigma of it.
+  const Cylinder<Q> bo{{1, -1, 1}, {1, 1, 1}, Q(1)};
+  const CylinderCylinderResult co = certified_cylinder_cylinder(C, bo);
+  BOOST_TEST(to_string(co.answer) == "overlapping");
+  BOOST_TEST(recheck::check_cylinder_pair(C, bo, co) == "");
+  const Cylinder<Q> C4{{0, 0, -3}, {0, 0, 5}, Q(4)}, bo4{{1, -4, 1}, {1, 4, 1}, Q(4)};
+  BOOST_TEST(recheck::check_cylinder_certificate(C4, bo4, co) == "");
+  BOOST_TEST(recheck::check_cylinder_pair(C4, bo4, co) == "phi_upper below 1 / sigma of the certificate point");
 }
 
 // Regression (found by the cross-check): the interval stage of the cylinder-pair separation
