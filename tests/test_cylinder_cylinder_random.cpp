@@ -226,11 +226,16 @@ struct World {
   cd::CylinderPair<Q> q;
 };
 
-World world(const Pair& p) {
+// The largest magnitude of the fourteen numbers of a pair.
+double largest_magnitude(const Pair& p) {
   double m = 0;
   for (const Cylinder<double>* c : {&p.a, &p.b})
     for (double x : {c->p0.x, c->p0.y, c->p0.z, c->p1.x, c->p1.y, c->p1.z, c->radius}) m = std::max(m, std::abs(x));
-  const double k = cd::power_of_two_normaliser(m);
+  return m;
+}
+
+World world(const Pair& p) {
+  const double k = cd::power_of_two_normaliser(largest_magnitude(p));
   const auto sc = [k](double x) { return x * k; };
   World w{p.a.map(sc), p.b.map(sc), {}, {}};
   w.s = cd::StaticPair::make(w.a, w.b);
@@ -400,11 +405,8 @@ Pair scaled(const Pair& p, int k) {
 // The quick path's frame (cd::quick_frame), checked against its definition: w = 2^j with
 // max |x| / w in [1, 2) over the fourteen numbers.
 double quick_frame(const Pair& p) {
-  double m = 0;
-  for (const Cylinder<double>* c : {&p.a, &p.b})
-    for (double x : {c->p0.x, c->p0.y, c->p0.z, c->p1.x, c->p1.y, c->p1.z, c->radius}) m = std::max(m, std::abs(x));
   int e = 0;
-  std::frexp(m, &e);  // m = f 2^e, f in [1/2, 1)
+  std::frexp(largest_magnitude(p), &e);  // m = f 2^e, f in [1/2, 1)
   const double w = std::ldexp(1.0, e - 1);
   BOOST_TEST(cd::quick_frame(p.a, p.b) == w);
   return w;

@@ -134,8 +134,9 @@ struct CylinderCylinderOptions {
   // (exact for two balls), or the witness point; its width varies with the pair.
   GapEnclosure gap_enclosure = GapEnclosure::on_access;
   // Rank every cheap candidate of the fast path (seven directions, five points) and certify the
-  // best, for a tighter enclosure computed in the query (the quick path is skipped); about five
-  // times the cost of the quick path on ordinary pairs. Only when gap_enclosure is not off.
+  // best, for a tighter enclosure computed in the query (the quick path is skipped); 5 to 17 times
+  // the quick path's median time on random pairs (bench/RESULTS.md). Only when gap_enclosure is
+  // not off.
   bool refine_gap = false;
   // Also fill the Rational certificate fields (direction, witness) when the certificate is a
   // binary64 vector. Off: it is given only in direction_binary64 / witness_binary64 (the same
@@ -265,6 +266,14 @@ inline std::pair<Point3<double>, Point3<double>> closest_segment_points(const Po
   const double t = std::clamp((b * s + e) / c, i1, 1 - i1);
   s = std::clamp((b * t - d) / a, i0, 1 - i0);
   return {a0 + s * e0, a1 + t * e1};
+}
+
+// The lower bound 1 / sigma of phi* from an upper bound sigma_upper of a point's scale sigma
+// (1 / phi* is the least scale), rounded down: fl(rho' fl(1 / s)) <= rho' (1 + u)^2 / s <= 1 / s.
+// 0 (no bound) unless sigma_upper is positive and finite.
+inline double phi_lower_from_sigma(double sigma_upper) {
+  if (!(sigma_upper > 0) || !std::isfinite(sigma_upper)) return 0;
+  return kStaticRoundDown * (1 / sigma_upper);
 }
 
 // x 2^j for a Rational, exactly.
@@ -494,10 +503,8 @@ class CylinderCylinderSolver {
   void lower_phi_upper(double u) {
     if (!phi_upper_ || u < *phi_upper_) phi_upper_ = u;
   }
-  // 1 / sigma_upper rounded down: fl(rho' fl(1 / s)) <= rho' (1 + eps)^2 / s <= 1 / s.
   void raise_phi_lower(double sigma_upper) {
-    if (!(sigma_upper > 0) || !std::isfinite(sigma_upper)) return;
-    const double lower = kStaticRoundDown * (1 / sigma_upper);
+    const double lower = phi_lower_from_sigma(sigma_upper);
     if (lower > phi_lower_) phi_lower_ = lower;
   }
 
@@ -923,15 +930,15 @@ class CylinderCylinderSolver {
 
 // The enclosures of the quick path's answers, from QuickSeparation's bounds (bounds asked for):
 // the upper bound of phi* from T; the lower bound from the segment between the midpoints for a
-// separated pair, or from the witness X (1 / sigma(X) <= phi*, with sigma_upper >= sigma(X),
-// rounded down: fl(rho' fl(1 / s)) <= rho' (1 + u)^2 / s <= 1 / s) for an overlapping one.
+// separated pair, or from the witness X (phi_lower_from_sigma, with sigma_upper >= sigma(X)) for
+// an overlapping one.
 inline CylinderGap quick_gap_separated(const QuickSeparation& q) {
   if (q.phi_lower > 0 && std::isfinite(q.phi_upper)) return {true, q.phi_lower, q.phi_upper};
   return {};
 }
 inline CylinderGap quick_gap_overlapping(const QuickSeparation& q, double sigma_upper) {
-  if (std::isfinite(q.phi_upper) && sigma_upper > 0 && std::isfinite(sigma_upper))
-    return {true, kStaticRoundDown * (1 / sigma_upper), q.phi_upper};
+  const double lower = phi_lower_from_sigma(sigma_upper);
+  if (std::isfinite(q.phi_upper) && lower > 0) return {true, lower, q.phi_upper};
   return {};
 }
 
