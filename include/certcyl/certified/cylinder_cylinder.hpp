@@ -47,7 +47,10 @@
 //                    the axes, the exact rim-wall and rim-rim normals of
 //                    detail/cylinder_rim_contacts.hpp, a small-height rational reconstruction of
 //                    the optimiser's direction), each proved or rejected exactly.
-//   gmpfr            the optimiser at 128, 256, ... bits up to options.max_precision; its direction
+//   gmpfr            exact candidates first (the midpoints as witnesses, T and its parts
+//                    orthogonal to the axes as directions, all in Gmpq), then the optimiser at
+//                    doubling precisions up to options.max_precision (by default set from the
+//                    input's span in bits); its direction
 //                    and point, converted exactly to rationals, are checked in Gmpq, and its
 //                    direction is reconstructed as a candidate normal for a touching proof.
 // Undecided results carry the certified bounds gap().phi_lower <= phi* <= gap().phi_upper, so
@@ -125,8 +128,14 @@ inline constexpr std::string_view to_string(CylinderArithmetic a) {
 enum class GapEnclosure { off, on_access, in_query };
 
 struct CylinderCylinderOptions {
-  // The Gmpfr stage runs at 128, 256, ... bits while the precision is at most this; 0 skips it.
-  long max_precision = 1024;
+  // The Gmpfr stage runs at doubling precisions, from 128 bits or, for input that spans many
+  // binades, from the first power of two above that span, while the precision is at most this.
+  // 0 (the default) sets the limit from the input: 2 s + 1024 bits, s the span in bits of the
+  // input numbers (binades between the largest and smallest magnitude plus the largest
+  // numerator-and-denominator size; at most about 3,300 for binary64). This limit is a choice
+  // measured to suffice on the wide-range families, not a proved bound. A negative value skips
+  // the stage. Only a caller's explicit limit is a resource limit in the sense of "undecided".
+  long max_precision = 0;
   // Try the exact touching proofs (stages touching_exact and the reconstruction in gmpfr).
   bool prove_touching = true;
   // The certified enclosure of phi* (GapEnclosure), from the candidates the deciding stage
@@ -868,10 +877,140 @@ class CylinderCylinderSolver {
   }
 
   // ---- stage gmpfr --------------------------------------------------------------------------------------
+  // The span in bits of the exact input (CylinderCylinderOptions::max_precision).
+  long input_span_bits() {
+    long hi = std::numeric_limits<long>::min(), lo = std::numeric_limits<long>::max(), size = 0;
+    for (int i = 0; i < 2; ++i) {
+      const Cylinder<Rational>& c = exact_cylinder(i);
+      for (const Rational* q : {&c.p0.x, &c.p0.y, &c.p0.z, &c.p1.x, &c.p1.y, &c.p1.z, &c.radius}) {
+        if (mpq_sgn(q->mpq()) == 0) continue;
+        const long n = static_cast<long>(mpz_sizeinbase(mpq_numref(q->mpq()), 2));
+        const long d = static_cast<long>(mpz_sizeinbase(mpq_denref(q->mpq()), 2));
+        hi = std::max(hi, n - d);
+        lo = std::min(lo, n - d);
+        size = std::max(size, n + d);
+      }
+    }
+    return hi >= lo ? hi - lo + size : size;
+  }
+
+  // Exact candidates, before any Gmpfr round: the midpoints m0, m1 as witnesses (each is interior
+  // to its own cylinder; in double they may be rounded off a needle's axis), and the directions
+  // T, its parts orthogonal to each axis, A0, A1 and A0 x A1, in Gmpq.
+  bool exact_candidates() {
+    const CylinderPair<Rational>& e = exact();
+    last_check_ = CylinderArithmetic::exact;
+    for (const Vec3<Rational>& D : {e.T, e.AA0 * e.T - dot(e.A0, e.T) * e.A0, e.AA1 * e.T - dot(e.A1, e.T) * e.A1, e.A0, e.A1,
+                                    cross(e.A0, e.A1)}) {
+      if (D.x == 0 && D.y == 0 && D.z == 0) continue;
+      ++result_.counters.directions_checked;
+      ++result_.counters.exact_checks;
+      if (separation_sign(e, D) == CGAL::POSITIVE) return separated_by(D);
+    }
+    for (const Cylinder<Rational>* c : {&e.c0, &e.c1}) {
+      Point3<Rational> m = c->p0 + (c->p1 - c->p0) / Rational(2);
+      ++result_.counters.points_checked;
+      ++result_.counters.exact_checks;
+      if (strictly_inside_both(e, m)) return overlapping_at(std::move(m));
+    }
+    return false;
+  }
+
+  // The best point of the segment between the midpoints, X = m0 + t T / 2 with t = s1 / (s0 + s1),
+  // s0 = sigma_0(m1) and s1 = sigma_1(m0) the gauges (the scale factor about each midpoint that
+  // reaches the other midpoint): sigma(X) = s0 s1 / (s0 + s1), so X is interior to both whenever
+  // 1/s0 + 1/s1 > 1 (the segment lower bound on phi* exceeds 1). t is computed in Gmpfr at the
+  // given precision, rounded to a rational, and the point is checked exactly.
+  bool segment_witness(long precision) {
+    const CylinderPair<Rational>& e = exact();
+    Rational t;
+    {
+      GmpfrPrecision scope(precision);
+      using F = CGAL::Gmpfr;
+      const auto f = [](const Rational& q) { return nt::from_rational<F>(q); };
+      const auto gauge = [&](const Cylinder<Rational>& c, const Vec3<Rational>& A, const Rational& AA, const Vec3<Rational>& v) {
+        // v = Y - m, the midpoint m of c: max(|2 v.A| / A.A, |v x A| / (r |A|)).
+        const Vec3<Rational> x = cross(v, A);
+        const F axial = f(abs(2 * dot(v, A)) / AA);
+        const F radial = CGAL::sqrt(f(dot(x, x) / (AA * c.radius * c.radius)));
+        return axial > radial ? axial : radial;
+      };
+      const Vec3<Rational> half = e.T / Rational(2);
+      const F s0 = gauge(e.c0, e.A0, e.AA0, half), s1 = gauge(e.c1, e.A1, e.AA1, -half);
+      if (!(s0 + s1 > 0)) return false;
+      t = to_rational(s1 / (s0 + s1));
+    }
+    Point3<Rational> X = e.c0.p0 + (e.A0 / Rational(2)) + t * (e.T / Rational(2));
+    ++result_.counters.points_checked;
+    ++result_.counters.exact_checks;
+    last_check_ = CylinderArithmetic::exact;
+    if (!strictly_inside_both(e, X)) return false;
+    return overlapping_at(std::move(X));
+  }
+
+  // A point of the open axis segment of cylinder j (interior to j) strictly inside cylinder i:
+  // the parameters u in (0, 1) of X = p0_j + u A_j with 0 < (X - p0_i).A_i < A_i.A_i and
+  // |(X - p0_i) x A_i|^2 < r_i^2 A_i.A_i form an open interval (a linear and a quadratic
+  // condition); its midpoint, computed in Gmpfr and rounded to a rational, is checked exactly.
+  // It finds the witness of a needle through the other cylinder.
+  bool axis_witness(long precision, int j) {
+    const CylinderPair<Rational>& e = exact();
+    const Cylinder<Rational>& ci = j == 0 ? e.c1 : e.c0;
+    const Cylinder<Rational>& cj = j == 0 ? e.c0 : e.c1;
+    const Vec3<Rational>& Ai = j == 0 ? e.A1 : e.A0;
+    const Vec3<Rational>& Aj = j == 0 ? e.A0 : e.A1;
+    const Rational& AAi = j == 0 ? e.AA1 : e.AA0;
+    const Vec3<Rational> w = cj.p0 - ci.p0, c = cross(w, Ai), g = cross(Aj, Ai);
+    Rational u;
+    {
+      GmpfrPrecision scope(precision);
+      using F = CGAL::Gmpfr;
+      const auto f = [](const Rational& q) { return nt::from_rational<F>(q); };
+      F lo(0), hi(1);
+      // 0 < w.A_i + u A_j.A_i < A_i.A_i
+      const Rational a0 = dot(w, Ai), a1 = dot(Aj, Ai);
+      if (a1 == 0) {
+        if (!(a0 > 0 && a0 < AAi)) return false;
+      } else {
+        F u0 = f(-a0 / a1), u1 = f((AAi - a0) / a1);
+        if (u1 < u0) std::swap(u0, u1);
+        if (u0 > lo) lo = u0;
+        if (u1 < hi) hi = u1;
+      }
+      // q(u) = |c|^2 - r_i^2 A_i.A_i + 2 u c.g + u^2 |g|^2 < 0
+      const Rational q0 = dot(c, c) - ci.radius * ci.radius * AAi, q1 = dot(c, g), q2 = dot(g, g);
+      if (q2 == 0) {
+        if (!(q0 < 0)) return false;
+      } else {
+        const Rational disc = q1 * q1 - q0 * q2;
+        if (!(disc > 0)) return false;
+        const F root = CGAL::sqrt(f(disc)), Q2 = f(q2), Q1 = f(q1);
+        const F r0 = (-Q1 - root) / Q2, r1 = (-Q1 + root) / Q2;
+        if (r0 > lo) lo = r0;
+        if (r1 < hi) hi = r1;
+      }
+      if (!(lo < hi)) return false;
+      u = to_rational((lo + hi) / 2);
+    }
+    Point3<Rational> X = cj.p0 + u * Aj;
+    ++result_.counters.points_checked;
+    ++result_.counters.exact_checks;
+    last_check_ = CylinderArithmetic::exact;
+    if (!strictly_inside_both(e, X)) return false;
+    return overlapping_at(std::move(X));
+  }
+
   bool gmpfr() {
     begin(CylinderStage::gmpfr);
-    for (long precision = 128; precision <= options_.max_precision; precision *= 2) {
+    if (options_.max_precision < 0) return pass();
+    if (exact_candidates()) return true;
+    const long span = input_span_bits();
+    const long limit = options_.max_precision > 0 ? options_.max_precision : 2 * span + 1024;
+    long first = 128;
+    while (first < span) first *= 2;
+    for (long precision = first; precision <= limit; precision *= 2) {
       result_.gmpfr_precision = precision;
+      if (segment_witness(precision) || axis_witness(precision, 0) || axis_witness(precision, 1)) return true;
       Vec3<Rational> D;
       Point3<Rational> X;
       {

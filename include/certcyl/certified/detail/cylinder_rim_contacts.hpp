@@ -6,41 +6,28 @@
 // p_i(D) = 4 r_i^2 |D x A_i|^2 / A_i.A_i; touching with normal D means phi2(D) = D.T > 0 plus a
 // common point (detail/cylinder_touching.hpp proves both exactly for a rational D).
 //
-// Theorem. If two cylinders with rational data touch, they touch with a rational normal and at
-// a rational point. Cap contacts have the normal A_i and wall-wall contacts A0 x A1 or the part
-// of T orthogonal to the (parallel) axes; what is left to prove is the rim contacts.
-//
-//   Rim-rim. The common point X lies on both rim circles, so on the line L where the two cap
-//   planes meet (distinct planes: equal planes make a cap-cap contact, normal A0). L is rational
-//   and X = X0 + s L with s a root of a rational quadratic (|X - e0|^2 = r0^2, e0 the centre of
-//   rim 0). If s were irrational, its conjugate s' would give a point X' that satisfies the same
-//   rational equations, so X' lies on both circles too; then the contact set, which is convex
-//   (it is the intersection of the two solids with the supporting plane), holds the chord XX'
-//   of rim 0, and the support set of cylinder 0 in the contact normal would be the whole cap
-//   disk: a cap contact in both equal cap planes, not a rim-rim one. So s, X are rational, and
-//   so is the normal, which lies in both planes span(A_i, X - e_i):
-//     D = (A0 x (X - e0)) x (A1 x (X - e1))
-//   (when the two planes coincide every common normal lies between the rays s0 A0, X - e0,
-//   -s1 A1, -(X - e1) of that plane, and the boundary rays X - e0 and -(X - e1) are candidates).
-//
-//   Rim-wall (rim of cylinder i at X, wall of cylinder j). Let Q(X) = |(X - p0_j) x A_j|^2 /
-//   A_j.A_j - r_j^2 (zero on the infinite tube of j). X is a double zero of Q on rim circle i
-//   (the circle touches the tube). The conditions "X on circle i, X on the tube, tangent there"
-//   are rational polynomial equations, so if X is irrational its conjugate X' (X lies in a
-//   number field; take an automorphism that moves it) is another point of circle i where Q has
-//   a double zero. Q restricted to the circle (a conic) has 4 zeros with multiplicity, so its
-//   divisor is 2X + 2X', which is also the divisor of l^2 for the chord line l through X and X'
-//   (rational, since it is invariant under conjugation); on a conic a function without zeros
-//   and poles is constant, so Q = lambda l^2 on the circle with a real constant lambda != 0.
-//     lambda > 0: Q >= 0 on the circle and the chord XX' lies in the tube (Q is convex along a
-//       segment and zero at both ends), strictly inside it near X unless the chord is parallel
-//       to A_j (then the cap disk of i rests on the tube along it: a cap-wall contact with the
-//       normal A_i). A chord point near X is in the relative interior of cap disk i and, X being
-//       in the open slab of j, in the interior of j: the solids overlap.
-//     lambda < 0: Q <= 0 on the circle, so on the whole cap disk (convexity), and the disk
-//       points near X are interior to j again: overlapping.
-//   (X on the boundary of j's slab is on rim j: a rim-rim contact, above.) So X is rational.
-//   The normal D is orthogonal to A_j and lies in the plane span(A_i, X - e_i): rational.
+// Theorem (paper, Theorem 2; complete proof in its appendix "Touching pairs: complete proofs").
+// If two cylinders with rational data touch, one of these candidates is a contact normal:
+//   (i) A0 or A1; (ii) A0 x A1, or for parallel axes the part of T orthogonal to them;
+//   (iii) a rim-wall normal P + t W with t a rational double root of F_sigma (below);
+//   (iv) for a rational common point X of a rim of each (on the line where the cap planes meet),
+//        (A0 x u0) x (A1 x u1) when nonzero, else u0 or -u1 (u_i = X - e_i, e_i the rim's centre).
+// Proof outline. The contact normals are the nonzero vectors of N0(X) n -N1(X) for any one
+// contact point X (N_i the normal cone of cylinder i): every contact point lies in every contact
+// plane. Classify X: in the relative interior of a cap (normal +-A_i: (i)); on both walls
+// (normal orthogonal to both axes: (ii), with Cauchy-Schwarz for parallel axes); on a rim of i
+// and the wall of j (normal -n_j(X), radial; rational because X is: a conjugate X' != X would be
+// a second double zero of Q_j on rim circle i; Q_j restricted to the circle has four zeros
+// with multiplicity (unless it vanishes on the whole circle, which makes the cap disk a cross-
+// section of the tube: overlap), so Q_j = lambda l^2 on the circle, l the chord line XX', and
+// both signs of lambda give an interior common point or the cap normal +-A_i; conjugates of
+// degree 3 or 4 cannot occur, since X and X' already use the four zeros, and a non-real X'
+// would bring its complex conjugate as a third); on a rim of each (X is rational: an
+// irrational root on the line of the cap planes has a conjugate that is a second contact
+// point, and the chord between them would make both cap planes the contact plane; the normal
+// lies on the line pi0 n pi1, pi_i = span(A_i, u_i), or, when pi0 = pi1, the extreme rays of
+// the intersection of two plane cones are generators: +-A_i, u0, -u1). The touching stage
+// tries every candidate, so it decides every touching pair.
 //
 // So no algebraic numbers are needed: the design note's "roots of univariate polynomials of
 // degree up to 4 and 8" are, for rational input, always rational roots, and an irrational
@@ -55,10 +42,14 @@
 // wall), so t* is a double root of 1 - g, hence of the rational quartic
 //   F_sigma(t) = ((1 - sigma l)^2 - p_i - p_j)^2 - 4 p_i p_j
 //              = product over the four sign choices of (1 - sigma l +- sqrt(p_i) +- sqrt(p_j)).
-// F_sigma is never the zero polynomial (that would need p_j(t) = 4 r_j^2 |P + t W|^2 to be a
-// square of a linear polynomial, impossible since P.T = 1 and W.T = 0 make P, W independent).
-// Its double roots are the roots of S = squarefree(gcd(F, F')), of degree at most 2; only
-// rational roots can be contacts (theorem), and they give the candidates P + t* W. Degree:
+// F_sigma is the zero polynomial exactly when sigma l = 1 and p_i = p_j identically (p_j(t) =
+// 4 r_j^2 |P + t W|^2 has two simple non-real roots, since P.T = 1 and W.T = 0 make P, W
+// independent; F = 0 makes p_i p_j a square, so p_i = c p_j, and then (1 - sigma l)^2 =
+// (1 +- sqrt c)^2 p_j forces c = 1 and sigma l = 1); there g = 1 + 2 sqrt(p_j) > 1 on the line,
+// so that sigma has no contact and is skipped. Otherwise a contact normal on the line is a
+// double root (g >= 1 with equality there, g analytic near it), so a root of
+// S = squarefree(gcd(F, F')), of degree at most 2 (a quartic has at most two multiple roots);
+// only rational roots can be contacts (theorem), and they give the candidates P + t* W. Degree:
 // the coefficients of F are of degree 8 in P, W and 4 in the squared radii over A.A; all in Gmpq.
 #pragma once
 
@@ -190,7 +181,7 @@ inline void rim_wall_normals(const CylinderPair<Rational>& d, std::vector<Vec3<R
       const RationalPolynomial m = RationalPolynomial{Rational(1)} - Rational(sigma) * l;  // 1 - sigma l
       const RationalPolynomial e = m * m - pi - pj;
       const RationalPolynomial F = e * e - four_pi_pj;
-      if (F.empty()) continue;  // impossible (header comment); kept so that gcd stays defined
+      if (F.empty()) continue;  // sigma l = 1 and p_i = p_j: no contact for this sigma (header comment)
       const RationalPolynomial H = gcd(F, derivative(F));
       if (H.size() < 2) continue;  // no double root
       const RationalPolynomial S = divide(H, gcd(H, derivative(H))).first;
