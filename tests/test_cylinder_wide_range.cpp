@@ -65,3 +65,31 @@ BOOST_AUTO_TEST_CASE(fuzz_needle_is_overlapping) {
     BOOST_TEST(certcyl::recheck::check_cylinder_pair(swap ? b.map(to_q) : a.map(to_q), swap ? a.map(to_q) : b.map(to_q), r) == "");
   }
 }
+
+// Rationals of 5,000 digits: every base contact type, turned by a rational rotation, translated
+// by 1/3, divided by 10^5000 + 1, exactly touching and moved 2^-20 either side. The Gmpfr rounds
+// take their precision from the binades the geometry spans, not from the digits (once, from the
+// digits, such a pair ran for minutes); all must be decided and right.
+BOOST_AUTO_TEST_CASE(five_thousand_digit_pairs_are_decided) {
+  CGAL::Gmpz z(std::string("1") + std::string(5000, '0'));
+  z += 1;
+  const Q D(z);
+  const Rotation R = Rotation::from_quaternion(1, 2, 3, 4);
+  const auto shrink = [&D](const Q& x) { return x / D; };
+  for (const TouchingCase& base : base_touching_cases()) {
+    for (const int side : {0, 1, -1}) {
+      const Q d = Q(side) / Q(1 << 20);
+      const Cylinder<Q> a = move(base.a, R, {Q(1, 3), 0, 0}).map(shrink);
+      const Cylinder<Q> b = move(translate(base.b, d * base.normal), R, {Q(1, 3), 0, 0}).map(shrink);
+      const Answer expected = side == 0 ? Answer::touching : (side > 0 ? Answer::separated : Answer::overlapping);
+      const certcyl::CylinderCylinderResult r = certcyl::certified_cylinder_cylinder(a, b);
+      BOOST_TEST_CONTEXT(base.name << " side " << side) {
+        BOOST_TEST(r.answer == expected);
+        BOOST_TEST(certcyl::recheck::check_cylinder_pair(a, b, r) == "");
+        // The geometry spans a few binades: no round above the first ones (from the digits it
+        // started at 32,768 bits).
+        BOOST_TEST(r.gmpfr_precision <= 256);
+      }
+    }
+  }
+}

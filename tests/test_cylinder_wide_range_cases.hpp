@@ -31,12 +31,7 @@ struct WideCase {
   bool binary64;  // every number is a double
 };
 
-inline Q two_power(long e) {
-  Q x(1);
-  if (e > 0) mpq_mul_2exp(x.mpq(), x.mpq(), static_cast<mp_bitcnt_t>(e));
-  if (e < 0) mpq_div_2exp(x.mpq(), x.mpq(), static_cast<mp_bitcnt_t>(-e));
-  return x;
-}
+inline Q two_power(long e) { return certcyl::detail::times_two_power(Q(1), e); }
 
 // A contact point of each base case (the single contact point, or one point of the contact set).
 inline Point3<Q> base_contact_point(const TouchingCase& c) {
@@ -63,7 +58,8 @@ inline Q big_denominator() {
   return Q(z);
 }
 
-// Whether every number of c is a finite binary64 value (exactly).
+// Whether every number of c is a finite binary64 value, subnormals and large integers included
+// (detail::exact_double leaves those out).
 inline bool all_binary64(const Cylinder<Q>& c) {
   for (const Q* q : {&c.p0.x, &c.p0.y, &c.p0.z, &c.p1.x, &c.p1.y, &c.p1.z, &c.radius}) {
     const double x = CGAL::to_double(*q);

@@ -130,9 +130,9 @@ enum class GapEnclosure { off, on_access, in_query };
 struct CylinderCylinderOptions {
   // The Gmpfr stage runs at doubling precisions, from 128 bits or, for input that spans many
   // binades, from the first power of two above that span, while the precision is at most this.
-  // 0 (the default) sets the limit from the input: 2 s + 1024 bits, s the span in bits of the
-  // input numbers (binades between the largest and smallest magnitude plus the largest
-  // numerator-and-denominator size; at most about 3,300 for binary64). This limit is a choice
+  // 0 (the default) sets the limit from the input: 4 s + 1024 bits, s the span in binades from
+  // the smallest radius or coordinate of an axis or of T to the largest input number (at most
+  // about 2,100 for binary64; the digits of a rational do not count). This limit is a choice
   // measured to suffice on the wide-range families, not a proved bound. A negative value skips
   // the stage. Only a caller's explicit limit is a resource limit in the sense of "undecided".
   long max_precision = 0;
@@ -859,12 +859,16 @@ class CylinderCylinderSolver {
     return touching_with(std::move(*c));
   }
 
+  // A0, A1, A0 x A1 and the parts of T orthogonal to each axis, exactly: the contact normals of
+  // cap and wall contacts (detail/cylinder_rim_contacts.hpp), and separating candidates.
+  static std::array<Vec3<Rational>, 5> structural_directions(const CylinderPair<Rational>& e) {
+    return {e.A0, e.A1, cross(e.A0, e.A1), e.AA0 * e.T - dot(e.A0, e.T) * e.A0, e.AA1 * e.T - dot(e.A1, e.T) * e.A1};
+  }
+
   bool touching_exact() {
     begin(CylinderStage::touching_exact);
     const CylinderPair<Rational>& e = exact();
-    const std::array<Vec3<Rational>, 5> structural{e.A0, e.A1, cross(e.A0, e.A1), e.AA0 * e.T - dot(e.A0, e.T) * e.A0,
-                                                   e.AA1 * e.T - dot(e.A1, e.T) * e.A1};
-    for (const Vec3<Rational>& D : structural)
+    for (const Vec3<Rational>& D : structural_directions(e))
       if (try_touching(D)) return true;
     // Rim-wall and rim-rim normals, exactly (detail/cylinder_rim_contacts.hpp).
     for (const Vec3<Rational>& D : rim_contact_normals(e))
@@ -877,21 +881,24 @@ class CylinderCylinderSolver {
   }
 
   // ---- stage gmpfr --------------------------------------------------------------------------------------
-  // The span in bits of the exact input (CylinderCylinderOptions::max_precision).
+  // The span in binades of the exact input (CylinderCylinderOptions::max_precision): from the
+  // smallest nonzero magnitude among the radii and the coordinates of A0, A1 and T (the sizes
+  // the geometry works at) to the largest coordinate or radius (what a rounded Gmpfr input
+  // loses its bits against). The digits of a rational do not count: the Gmpfr rounds only
+  // produce candidates, and every check is exact.
   long input_span_bits() {
-    long hi = std::numeric_limits<long>::min(), lo = std::numeric_limits<long>::max(), size = 0;
-    for (int i = 0; i < 2; ++i) {
-      const Cylinder<Rational>& c = exact_cylinder(i);
-      for (const Rational* q : {&c.p0.x, &c.p0.y, &c.p0.z, &c.p1.x, &c.p1.y, &c.p1.z, &c.radius}) {
-        if (mpq_sgn(q->mpq()) == 0) continue;
-        const long n = static_cast<long>(mpz_sizeinbase(mpq_numref(q->mpq()), 2));
-        const long d = static_cast<long>(mpz_sizeinbase(mpq_denref(q->mpq()), 2));
-        hi = std::max(hi, n - d);
-        lo = std::min(lo, n - d);
-        size = std::max(size, n + d);
-      }
-    }
-    return hi >= lo ? hi - lo + size : size;
+    const CylinderPair<Rational>& e = exact();
+    // floor(log2 |q|) within one, for q != 0.
+    const auto binade = [](const Rational& q) {
+      return static_cast<long>(mpz_sizeinbase(mpq_numref(q.mpq()), 2)) - static_cast<long>(mpz_sizeinbase(mpq_denref(q.mpq()), 2));
+    };
+    long hi = std::numeric_limits<long>::min(), lo = std::numeric_limits<long>::max();
+    for (const Cylinder<Rational>* c : {&e.c0, &e.c1})
+      for (const Rational* q : {&c->p0.x, &c->p0.y, &c->p0.z, &c->p1.x, &c->p1.y, &c->p1.z, &c->radius})
+        if (mpq_sgn(q->mpq()) != 0) hi = std::max(hi, binade(*q));
+    for (const Rational* q : {&e.c0.radius, &e.c1.radius, &e.A0.x, &e.A0.y, &e.A0.z, &e.A1.x, &e.A1.y, &e.A1.z, &e.T.x, &e.T.y, &e.T.z})
+      if (mpq_sgn(q->mpq()) != 0) lo = std::min(lo, binade(*q));
+    return std::max(0L, hi - lo + 2);
   }
 
   // Exact candidates, before any Gmpfr round: the midpoints m0, m1 as witnesses (each is interior
@@ -899,21 +906,26 @@ class CylinderCylinderSolver {
   // T, its parts orthogonal to each axis, A0, A1 and A0 x A1, in Gmpq.
   bool exact_candidates() {
     const CylinderPair<Rational>& e = exact();
-    last_check_ = CylinderArithmetic::exact;
-    for (const Vec3<Rational>& D : {e.T, e.AA0 * e.T - dot(e.A0, e.T) * e.A0, e.AA1 * e.T - dot(e.A1, e.T) * e.A1, e.A0, e.A1,
-                                    cross(e.A0, e.A1)}) {
-      if (D.x == 0 && D.y == 0 && D.z == 0) continue;
-      ++result_.counters.directions_checked;
-      ++result_.counters.exact_checks;
-      if (separation_sign(e, D) == CGAL::POSITIVE) return separated_by(D);
-    }
-    for (const Cylinder<Rational>* c : {&e.c0, &e.c1}) {
-      Point3<Rational> m = c->p0 + (c->p1 - c->p0) / Rational(2);
-      ++result_.counters.points_checked;
-      ++result_.counters.exact_checks;
-      if (strictly_inside_both(e, m)) return overlapping_at(std::move(m));
-    }
+    if (!(e.T.x == 0 && e.T.y == 0 && e.T.z == 0) && exact_separates(e.T)) return true;
+    for (const Vec3<Rational>& D : structural_directions(e))
+      if (!(D.x == 0 && D.y == 0 && D.z == 0) && exact_separates(D)) return true;
+    for (const Cylinder<Rational>* c : {&e.c0, &e.c1})
+      if (exact_overlaps(c->p0 + (c->p1 - c->p0) / Rational(2))) return true;
     return false;
+  }
+
+  // An input-frame rational direction or point, checked in Gmpq; decides when it proves.
+  bool exact_separates(Vec3<Rational> D) {
+    ++result_.counters.directions_checked;
+    ++result_.counters.exact_checks;
+    last_check_ = CylinderArithmetic::exact;
+    return separation_sign(exact(), D) == CGAL::POSITIVE && separated_by(std::move(D));
+  }
+  bool exact_overlaps(Point3<Rational> X) {
+    ++result_.counters.points_checked;
+    ++result_.counters.exact_checks;
+    last_check_ = CylinderArithmetic::exact;
+    return strictly_inside_both(exact(), X) && overlapping_at(std::move(X));
   }
 
   // The best point of the segment between the midpoints, X = m0 + t T / 2 with t = s1 / (s0 + s1),
@@ -940,12 +952,7 @@ class CylinderCylinderSolver {
       if (!(s0 + s1 > 0)) return false;
       t = to_rational(s1 / (s0 + s1));
     }
-    Point3<Rational> X = e.c0.p0 + (e.A0 / Rational(2)) + t * (e.T / Rational(2));
-    ++result_.counters.points_checked;
-    ++result_.counters.exact_checks;
-    last_check_ = CylinderArithmetic::exact;
-    if (!strictly_inside_both(e, X)) return false;
-    return overlapping_at(std::move(X));
+    return exact_overlaps(e.c0.p0 + (e.A0 / Rational(2)) + t * (e.T / Rational(2)));
   }
 
   // A point of the open axis segment of cylinder j (interior to j) strictly inside cylinder i:
@@ -992,12 +999,7 @@ class CylinderCylinderSolver {
       if (!(lo < hi)) return false;
       u = to_rational((lo + hi) / 2);
     }
-    Point3<Rational> X = cj.p0 + u * Aj;
-    ++result_.counters.points_checked;
-    ++result_.counters.exact_checks;
-    last_check_ = CylinderArithmetic::exact;
-    if (!strictly_inside_both(e, X)) return false;
-    return overlapping_at(std::move(X));
+    return exact_overlaps(cj.p0 + u * Aj);
   }
 
   bool gmpfr() {
@@ -1005,7 +1007,7 @@ class CylinderCylinderSolver {
     if (options_.max_precision < 0) return pass();
     if (exact_candidates()) return true;
     const long span = input_span_bits();
-    const long limit = options_.max_precision > 0 ? options_.max_precision : 2 * span + 1024;
+    const long limit = options_.max_precision > 0 ? options_.max_precision : 4 * span + 1024;
     long first = 128;
     while (first < span) first *= 2;
     for (long precision = first; precision <= limit; precision *= 2) {
@@ -1025,13 +1027,7 @@ class CylinderCylinderSolver {
       }
       bound_by_direction(to_iv(D));
       bound_by_point(world_iv(X));
-      last_check_ = CylinderArithmetic::exact;
-      ++result_.counters.directions_checked;
-      ++result_.counters.exact_checks;
-      if (separation_sign(exact(), D) == CGAL::POSITIVE) return separated_by(std::move(D));
-      ++result_.counters.points_checked;
-      ++result_.counters.exact_checks;
-      if (strictly_inside_both(exact(), X)) return overlapping_at(std::move(X));
+      if (exact_separates(D) || exact_overlaps(std::move(X))) return true;
       if (options_.prove_touching && !(D.x == 0 && D.y == 0 && D.z == 0)) {
         CGAL::Gmpz two_power;
         mpz_ui_pow_ui(two_power.mpz(), 2, static_cast<unsigned long>(precision / 2));
