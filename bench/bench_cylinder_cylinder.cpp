@@ -27,29 +27,13 @@
 #include "certcyl/certified/cylinder_cylinder.hpp"
 #include "certcyl/seeds/eberly_cylinders.hpp"
 
-#ifdef CERTCYL_HAVE_FCL
-#include <fcl/narrowphase/collision.h>
-#include <fcl/geometry/shape/cylinder.h>
-#endif
+#include "cylinder_pairs.hpp"
 
 namespace {
 
 using certcyl::Cylinder;
 using certcyl::Rational;
-using D3 = certcyl::Vec3<double>;
-
-Cylinder<double> random_cylinder(std::mt19937_64& g) {
-  std::uniform_real_distribution<double> u(-1, 1), len(0.2, 2), rad(0.05, 0.5);
-  D3 w;
-  double n2;
-  do {
-    w = {u(g), u(g), u(g)};
-    n2 = dot(w, w);
-  } while (n2 < 0.01 || n2 > 1);
-  const double h = len(g) / (2 * std::sqrt(n2));
-  const D3 c{u(g), u(g), u(g)};
-  return {c - h * w, c + h * w, rad(g)};
-}
+using namespace certcyl_bench;
 
 struct Pair {
   Cylinder<double> a, b;
@@ -185,32 +169,7 @@ void BM_eberly_double(benchmark::State& state) {
 BENCHMARK(BM_eberly_double)->Arg(0)->Arg(1);
 
 #ifdef CERTCYL_HAVE_FCL
-struct FclPair {
-  std::shared_ptr<fcl::Cylinderd> a, b;
-  fcl::Transform3d ta, tb;
-};
-
-FclPair to_fcl(const Pair& p) {
-  auto one = [](const Cylinder<double>& c, std::shared_ptr<fcl::Cylinderd>& geom, fcl::Transform3d& tf) {
-    const D3 A = c.p1 - c.p0, m = 0.5 * (c.p0 + c.p1);
-    const double len = std::sqrt(dot(A, A));
-    geom = std::make_shared<fcl::Cylinderd>(c.radius, len);
-    tf = fcl::Transform3d::Identity();
-    tf.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), Eigen::Vector3d(A.x, A.y, A.z)).toRotationMatrix();
-    tf.translation() = Eigen::Vector3d(m.x, m.y, m.z);
-  };
-  FclPair f;
-  one(p.a, f.a, f.ta);
-  one(p.b, f.b, f.tb);
-  return f;
-}
-
-bool fcl_collide(const FclPair& f) {
-  fcl::CollisionRequestd request;
-  fcl::CollisionResultd result;
-  fcl::collide(f.a.get(), f.ta, f.b.get(), f.tb, request, result);
-  return result.isCollision();
-}
+FclPair to_fcl(const Pair& p) { return certcyl_bench::to_fcl(p.a, p.b); }
 
 void BM_fcl(benchmark::State& state) {
   const std::vector<Pair>& ps = set(static_cast<int>(state.range(0)));
@@ -264,7 +223,7 @@ void BM_certified_stages(benchmark::State& state) {
   for (std::size_t a = 0; a < by.size(); ++a)
     state.counters["by_" + std::string(certcyl::to_string(static_cast<certcyl::CylinderArithmetic>(a)))] = by[a] / runs;
   state.counters["beyond_fast_path"] = 1 - (decided[0] + decided[1]) / runs;
-  state.counters["beyond_double"] = (decided[3] + decided[4] + decided[5]) / runs;
+  state.counters["beyond_double"] = (decided[3] + decided[4] + decided[5] + decided[6]) / runs;
   state.counters["any_gmpq_check"] = any_exact / runs;
 }
 BENCHMARK(BM_certified_stages)->Iterations(1)->Unit(benchmark::kMillisecond);

@@ -8,7 +8,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ccache pkg-config
-  libcgal-dev libgmp-dev libmpfr-dev libmpfi-dev libeigen3-dev
+  libcgal-dev libgmp-dev libmpfr-dev libmpfi-dev libeigen3-dev libqd-dev
   libboost-test-dev nlohmann-json3-dev libcli11-dev libbenchmark-dev
 )
 for arg in "$@"; do

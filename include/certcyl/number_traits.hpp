@@ -18,7 +18,7 @@
 //   NumberTraits<NT>::name()         a printable name ("double", "Gmpfr<113>", ...)
 //
 // Types: double, long double, CGAL::Interval_nt<false>, CGAL::Gmpq, CGAL::Mpzf, CGAL::Gmpfr,
-// CGAL::Lazy_exact_nt<CGAL::Gmpq>, CORE::Expr.
+// CGAL::Lazy_exact_nt<CGAL::Gmpq>, CORE::Expr, and QD's dd_real (double-double, 106 bits).
 //
 // Pitfalls this layer absorbs (design note, section 2):
 // - Interval_nt<false> is only correct while the FPU rounds upward: run interval code inside a
@@ -31,6 +31,11 @@
 //   precision of everything they touch. Use nt::constant and nt::from_rational, never
 //   `NT(2)` or `NT(0.5)`, in generic code.
 // - Mpzf is a ring of dyadic numbers: no division; from_rational rejects non-dyadic input.
+// - dd_real (Debian's libqd-dev) is an unevaluated sum hi + lo of two doubles: 106 bits, but
+//   binary64's exponent range (hi near the overflow threshold or lo in the subnormals loses the
+//   extra bits), and correct only while the FPU rounds to nearest (never inside
+//   `with_interval_rounding`). Its value is a binary64 sum, so it converts to a Rational exactly
+//   (`nt::to_rational`). CGAL has no traits for it: sign, compare and the Eigen traits are here.
 #pragma once
 
 #include <CGAL/CORE_Expr.h>
@@ -42,6 +47,7 @@
 #include <CGAL/Mpzf.h>
 #include <CGAL/long_double.h>
 #include <CGAL/number_utils.h>
+#include <qd/dd_real.h>
 
 #include <string>
 #include <type_traits>
@@ -157,7 +163,9 @@ struct NumberTraits<CGAL::Mpzf> {
   // Mpzf(Gmpz(0)) * 2 != 0), so integers are assembled exactly from 32-bit chunks through
   // Mpzf(double), which is exact.
   static CGAL::Mpzf integer_to_mpzf(const CGAL::Gmpz& n) {
-    CGAL::Gmpz magnitude = n.sign() == CGAL::NEGATIVE ? CGAL::Gmpz(-n) : n;
+    // A new number: a copy of n would share its representation, and the loop writes to it.
+    CGAL::Gmpz magnitude;
+    mpz_abs(magnitude.mpz(), n.mpz());
     CGAL::Mpzf result(0), scale(1);
     const CGAL::Mpzf chunk_base(4294967296.0);  // 2^32
     CGAL::Gmpz chunk;
@@ -202,6 +210,20 @@ struct NumberTraits<CORE::Expr> {
   static CORE::Expr constant(long k) { return CORE::Expr(k); }
 };
 
+template <>
+struct NumberTraits<dd_real> {
+  static constexpr bool is_exact = false, is_certified = false, has_sqrt = true, is_field = true;
+  static std::string name() { return "dd_real"; }
+  // hi = the double nearest q, lo = the double nearest q - hi: correctly rounded to 106 bits
+  // wherever hi and lo are normal numbers.
+  static dd_real from_rational(const Rational& q) {
+    const double hi = round_to_nearest<double>(q);
+    if (!std::isfinite(hi)) return dd_real(hi);
+    return dd_real(hi, round_to_nearest<double>(q - Rational(hi)));
+  }
+  static dd_real constant(long k) { return dd_real(static_cast<double>(k)); }
+};
+
 // Satisfied by the types above.
 template <class NT>
 concept SupportedNumber = requires { NumberTraits<NT>::is_exact; };
@@ -228,13 +250,21 @@ std::string name() {
 
 template <class NT>
 CGAL::Sign sign(const NT& x) {
-  // For Interval_nt the Uncertain<Sign> converts here, throwing when undecided.
-  return static_cast<CGAL::Sign>(CGAL::sign(x));
+  if constexpr (std::is_same_v<NT, dd_real>) {
+    return x.is_positive() ? CGAL::POSITIVE : x.is_negative() ? CGAL::NEGATIVE : CGAL::ZERO;
+  } else {
+    // For Interval_nt the Uncertain<Sign> converts here, throwing when undecided.
+    return static_cast<CGAL::Sign>(CGAL::sign(x));
+  }
 }
 
 template <class NT>
 CGAL::Comparison_result compare(const NT& a, const NT& b) {
-  return static_cast<CGAL::Comparison_result>(CGAL::compare(a, b));
+  if constexpr (std::is_same_v<NT, dd_real>) {
+    return a < b ? CGAL::SMALLER : b < a ? CGAL::LARGER : CGAL::EQUAL;
+  } else {
+    return static_cast<CGAL::Comparison_result>(CGAL::compare(a, b));
+  }
 }
 
 template <class NT>
@@ -271,6 +301,8 @@ NT sqrt(const NT& x) {
                 "Gmpfr or an interval, or a square-root-free formulation");
   if constexpr (std::is_floating_point_v<NT>) {
     return std::sqrt(x);
+  } else if constexpr (std::is_same_v<NT, dd_real>) {
+    return ::sqrt(x);
   } else {
     return CGAL::sqrt(x);
   }
@@ -280,14 +312,47 @@ NT sqrt(const NT& x) {
 // Mpzf, Gmpfr, Lazy_exact_nt and CORE::Expr it is CGAL's enclosing conversion.
 template <class NT>
 std::pair<double, double> to_interval(const NT& x) {
-  return CGAL::to_interval(x);
+  if constexpr (std::is_same_v<NT, dd_real>) {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const Interval sum = Interval(x.x[0]) + Interval(x.x[1]);
+    return {sum.inf(), sum.sup()};
+  } else {
+    return CGAL::to_interval(x);
+  }
 }
 
 // The double nearest x where the type can tell it (exact types), an approximation otherwise.
 template <class NT>
 double to_double(const NT& x) {
-  return CGAL::to_double(x);
+  if constexpr (std::is_same_v<NT, dd_real>) {
+    return x.x[0];
+  } else {
+    return CGAL::to_double(x);
+  }
 }
+
+// The exact value of a finite dd_real.
+inline Rational to_rational(const dd_real& x) { return Rational(x.x[0]) + Rational(x.x[1]); }
 
 }  // namespace nt
 }  // namespace certcyl
+
+// Eigen's traits for dd_real (CGAL provides those of its own types), so that Eigen's dense
+// solvers run on it.
+namespace Eigen {
+template <class>
+struct NumTraits;
+template <>
+struct NumTraits<dd_real> {
+  using Real = dd_real;
+  using NonInteger = dd_real;
+  using Nested = dd_real;
+  using Literal = dd_real;
+  static inline Real epsilon() { return dd_real::_eps; }
+  static inline Real dummy_precision() { return dd_real(1e-28); }
+  static inline Real highest() { return dd_real::_max; }
+  static inline Real lowest() { return -dd_real::_max; }
+  static inline int digits10() { return 31; }
+  enum { IsInteger = 0, IsSigned = 1, IsComplex = 0, RequireInitialization = 1, ReadCost = 2, AddCost = 10, MulCost = 10 };
+};
+}  // namespace Eigen

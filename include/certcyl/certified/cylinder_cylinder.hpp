@@ -43,6 +43,12 @@
 //                    and the best direction, then the best point, is checked.
 //   optimiser        smoothed Newton in double on the plane D.Delta = 1 (detail/cylinder_optimiser.hpp),
 //                    giving a direction and a dual point, checked likewise.
+//   refine           Newton's method in double-double (QD's dd_real) on the optimality conditions
+//                    of min sigma(X), from the optimiser's point, with the active caps, walls
+//                    and rims read off the gauges (detail/cylinder_active_set.hpp): a point and
+//                    a direction accurate to about 2^-100, converted exactly to rationals and
+//                    checked in Gmpq; it decides pairs 2^-50 .. 2^-95 from touching, and its
+//                    direction leads the touching candidates.
 //   touching_exact   rational candidate normals (A0, A1, A0 x A1, the parts of Delta orthogonal to
 //                    the axes, the exact rim-wall and rim-rim normals of
 //                    detail/cylinder_rim_contacts.hpp, a small-height rational reconstruction of
@@ -78,6 +84,7 @@
 #include <string_view>
 
 #include "certcyl/answer.hpp"
+#include "certcyl/certified/detail/cylinder_active_set.hpp"
 #include "certcyl/certified/detail/cylinder_certificates.hpp"
 #include "certcyl/certified/detail/cylinder_optimiser.hpp"
 #include "certcyl/certified/detail/cylinder_quick_filter.hpp"
@@ -88,14 +95,15 @@
 
 namespace certcyl {
 
-enum class CylinderStage { midpoints, fast_path, optimiser, touching_exact, gmpfr, none };
-inline constexpr std::size_t kCylinderStages = 5;  // stages that can decide (none excluded)
+enum class CylinderStage { midpoints, fast_path, optimiser, refine, touching_exact, gmpfr, none };
+inline constexpr std::size_t kCylinderStages = 6;  // stages that can decide (none excluded)
 
 inline constexpr std::string_view to_string(CylinderStage s) {
   switch (s) {
     case CylinderStage::midpoints: return "midpoints";
     case CylinderStage::fast_path: return "fast_path";
     case CylinderStage::optimiser: return "optimiser";
+    case CylinderStage::refine: return "refine";
     case CylinderStage::touching_exact: return "touching_exact";
     case CylinderStage::gmpfr: return "gmpfr";
     case CylinderStage::none: return "none";
@@ -138,6 +146,9 @@ struct CylinderCylinderOptions {
   long max_precision = 0;
   // Try the exact touching proofs (stages touching_exact and the reconstruction in gmpfr).
   bool prove_touching = true;
+  // Run the refine stage (Newton's method in double-double on the optimality conditions). Off,
+  // near-touching pairs go to the Gmpfr stage; the switch exists to measure the stage.
+  bool refine = true;
   // The certified enclosure of phi* (GapEnclosure), from the candidates the deciding stage
   // evaluates: on the fast path, the direction Delta and the segment between the midpoints
   // (exact for two balls), or the witness point; its width varies with the pair.
@@ -286,10 +297,13 @@ inline double phi_lower_from_sigma(double sigma_upper) {
 }
 
 // x 2^j for a Rational, exactly.
-inline Rational times_two_power(Rational x, long j) {
-  if (j > 0) mpq_mul_2exp(x.mpq(), x.mpq(), static_cast<mp_bitcnt_t>(j));
-  if (j < 0) mpq_div_2exp(x.mpq(), x.mpq(), static_cast<mp_bitcnt_t>(-j));
-  return x;
+// The result is a new number: Gmpq copies share their representation (CGAL's Handle_for), and
+// writing through mpq() of a copy would change the caller's value too.
+inline Rational times_two_power(const Rational& x, long j) {
+  Rational y;
+  if (j >= 0) mpq_mul_2exp(y.mpq(), x.mpq(), static_cast<mp_bitcnt_t>(j));
+  if (j < 0) mpq_div_2exp(y.mpq(), x.mpq(), static_cast<mp_bitcnt_t>(-j));
+  return y;
 }
 
 // Frames. Binary64 input (the double overload, or Rational input whose every number is a
@@ -336,6 +350,7 @@ class CylinderCylinderSolver {
     if (midpoints()) return finish();
     if (fast_path()) return finish();
     if (optimiser()) return finish();
+    if (options_.refine && refine()) return finish();
     if (options_.prove_touching && touching_exact()) return finish();
     if (gmpfr()) return finish();
     result_.stage = CylinderStage::none;
@@ -455,7 +470,9 @@ class CylinderCylinderSolver {
   // Sign of |D.T| - phi2(D) for a world direction D. With the filter on, D is first scaled by a
   // power of two to |D_i| < 2 (the scaled D is the certificate; the sign does not change) and
   // its filter values are left in *terms for the gap bound.
-  CGAL::Sign check_direction(Vec3<double>& D, std::optional<StaticDirection>* terms = nullptr) {
+  // With exact = false, a check the filter and the intervals leave open answers ZERO (proves
+  // nothing) instead of going on to Gmpq.
+  CGAL::Sign check_direction(Vec3<double>& D, std::optional<StaticDirection>* terms = nullptr, bool exact_allowed = true) {
     if (!finite(D)) return CGAL::ZERO;  // not a candidate: proves nothing
     ++result_.counters.directions_checked;
     if (static_ok_) {
@@ -478,13 +495,14 @@ class CylinderCylinderSolver {
       last_check_ = CylinderArithmetic::interval;
       return *s;
     }
+    if (!exact_allowed) return CGAL::ZERO;
     ++result_.counters.exact_checks;
     last_check_ = CylinderArithmetic::exact;
     return separation_sign(exact(), D.map([](double x) { return Rational(x); }));
   }
 
   // Whether the world point X is strictly inside both cylinders.
-  bool check_point(const Point3<double>& X, std::optional<StaticPoint>* values = nullptr) {
+  bool check_point(const Point3<double>& X, std::optional<StaticPoint>* values = nullptr, bool exact_allowed = true) {
     if (!finite(X)) return false;  // not a candidate
     ++result_.counters.points_checked;
     if (static_ok_) {
@@ -503,6 +521,7 @@ class CylinderCylinderSolver {
       last_check_ = CylinderArithmetic::interval;
       return *s;
     }
+    if (!exact_allowed) return false;
     ++result_.counters.exact_checks;
     last_check_ = CylinderArithmetic::exact;
     return strictly_inside_both(exact(), to_input_frame(X));
@@ -835,12 +854,58 @@ class CylinderCylinderSolver {
     const PlaneMinimum<double> m = problem.minimise(true, 30);
     result_.counters.newton_steps += static_cast<std::uint32_t>(m.iterations);
     optimum_ = m.direction;
+    optimum_point_ = m.point;
+    optimum_value_ = std::isfinite(m.value) ? m.value : std::numeric_limits<double>::infinity();
     bound_by_direction(m.direction);
     bound_by_point(m.point);
+    // When the refine stage follows, a check that the filter and the intervals leave open is
+    // left to it (its candidates are better by some 50 bits); it comes back here only if the
+    // refine stage finds no optimum.
     Vec3<double> D = m.direction;
-    if (std::isfinite(m.value) && m.value < 1 && check_direction(D) == CGAL::POSITIVE) return separated_by(D);
-    if (scale_double(m.point) < 1 && check_point(m.point)) return overlapping_at(m.point);
+    if (std::isfinite(m.value) && m.value < 1 && check_direction(D, nullptr, !options_.refine) == CGAL::POSITIVE) return separated_by(D);
+    if (scale_double(m.point) < 1 && check_point(m.point, nullptr, !options_.refine)) return overlapping_at(m.point);
     return pass();
+  }
+
+  // The optimiser's checks in Gmpq, when the refine stage could not improve on its candidates.
+  bool optimiser_exact() {
+    if (!optimum_ || !optimum_point_) return false;
+    Vec3<double> D = *optimum_;
+    if (optimum_value_ < 1 && check_direction(D) == CGAL::POSITIVE) return separated_by(D);
+    if (scale_double(*optimum_point_) < 1 && check_point(*optimum_point_)) return overlapping_at(*optimum_point_);
+    return false;
+  }
+
+  // ---- stage refine -------------------------------------------------------------------------------------
+  bool refine() {
+    begin(CylinderStage::refine);
+    if (!optimum_point_ || !finite(*optimum_point_)) return optimiser_exact() || pass();
+    const auto to_dd = [](double x) { return dd_real(x); };
+    // The world input in double-double: exact for binary64 input, rounded to 106 bits otherwise.
+    const auto rational_to_dd = [this](const Rational& q) { return nt::from_rational<dd_real>(times_two_power(q, world_exponent_)); };
+    const CylinderPair<dd_real> d = binary64_ ? CylinderPair<dd_real>::make(dbl_.c0.map(to_dd), dbl_.c1.map(to_dd))
+                                              : CylinderPair<dd_real>::make(exact_cylinder(0).map(rational_to_dd), exact_cylinder(1).map(rational_to_dd));
+    ActiveSetProblem<dd_real> problem(d, dd_real(std::ldexp(1.0, -96)));
+    const std::optional<ActiveSetOptimum<dd_real>> o = problem.solve(optimum_point_->map(to_dd));
+    if (!o) return optimiser_exact() || pass();
+    result_.counters.newton_steps += static_cast<std::uint32_t>(o->iterations);
+    const auto finite_dd = [](const dd_real& x) { return std::isfinite(x.x[0]) && std::isfinite(x.x[1]); };
+    if (!finite_dd(o->value) || !finite_dd(o->point.x) || !finite_dd(o->point.y) || !finite_dd(o->point.z)) return optimiser_exact() || pass();
+    const Vec3<Rational> D = o->direction.map([](const dd_real& x) { return nt::to_rational(x); });
+    if (finite_dd(o->direction.x) && finite_dd(o->direction.y) && finite_dd(o->direction.z) && !(D.x == 0 && D.y == 0 && D.z == 0))
+      refined_ = D;
+    // sigma(X) within 2^-98 of 1: touching, most likely; neither check could prove anything.
+    const dd_real excess = o->value - dd_real(1);
+    if (std::abs(excess.x[0]) < std::ldexp(1.0, -98)) return pass();
+    if (excess.x[0] < 0) {
+      const Point3<Rational> X = o->point.map([this](const dd_real& x) { return times_two_power(nt::to_rational(x), -world_exponent_); });
+      bound_by_point(world_iv(X));
+      if (exact_overlaps(X)) return true;
+    } else if (refined_) {
+      bound_by_direction(to_iv(*refined_));
+      if (exact_separates(*refined_)) return true;
+    }
+    return optimiser_exact() || pass();
   }
 
   // ---- stage touching_exact -----------------------------------------------------------------------------
@@ -865,11 +930,31 @@ class CylinderCylinderSolver {
     return {e.A0, e.A1, cross(e.A0, e.A1), e.AA0 * e.T - dot(e.A0, e.T) * e.A0, e.AA1 * e.T - dot(e.A1, e.T) * e.A1};
   }
 
+  // Whether the rational directions D and R are parallel to about 2^-40 (in double; a guess
+  // that orders the candidates, not a proof).
+  static bool nearly_parallel(const Vec3<Rational>& D, const Vec3<Rational>& R) {
+    const auto d = [](const Vec3<Rational>& v) { return v.map([](const Rational& x) { return CGAL::to_double(x); }); };
+    const Vec3<double> a = d(D), b = d(R), c = cross(a, b);
+    return dot(c, c) <= std::ldexp(dot(a, a) * dot(b, b), -80);
+  }
+
   bool touching_exact() {
     begin(CylinderStage::touching_exact);
     const CylinderPair<Rational>& e = exact();
-    for (const Vec3<Rational>& D : structural_directions(e))
-      if (try_touching(D)) return true;
+    const std::array<Vec3<Rational>, 5> structural = structural_directions(e);
+    // The refine stage's direction is within about 2^-100 of the contact normal when there is
+    // one: the structural direction parallel to it first, then its rational reconstruction.
+    std::array<bool, 5> tried{};
+    if (refined_) {
+      for (std::size_t i = 0; i < structural.size(); ++i)
+        if (nearly_parallel(structural[i], *refined_)) {
+          tried[i] = true;
+          if (try_touching(structural[i])) return true;
+        }
+      if (try_touching(reconstruct_direction(*refined_, Rational(1L, 1UL << 50)))) return true;
+    }
+    for (std::size_t i = 0; i < structural.size(); ++i)
+      if (!tried[i] && try_touching(structural[i])) return true;
     // Rim-wall and rim-rim normals, exactly (detail/cylinder_rim_contacts.hpp).
     for (const Vec3<Rational>& D : rim_contact_normals(e))
       if (try_touching(D)) return true;
@@ -1053,6 +1138,9 @@ class CylinderCylinderSolver {
   std::optional<CylinderPair<Interval>> iv_;
   std::optional<CylinderPair<Rational>> ex_;
   std::optional<Vec3<double>> optimum_;
+  std::optional<Point3<double>> optimum_point_;
+  double optimum_value_ = std::numeric_limits<double>::infinity();
+  std::optional<Vec3<Rational>> refined_;  // the refine stage's direction, exactly
   double phi_lower_ = 0;
   std::optional<double> phi_upper_;
   bool coincident_ = false;
