@@ -18,7 +18,8 @@
 //   NumberTraits<NT>::name()         a printable name ("double", "Gmpfr<113>", ...)
 //
 // Types: double, long double, CGAL::Interval_nt<false>, CGAL::Gmpq, CGAL::Mpzf, CGAL::Gmpfr,
-// CGAL::Lazy_exact_nt<CGAL::Gmpq>, CORE::Expr, and QD's dd_real (double-double, 106 bits).
+// CGAL::Lazy_exact_nt<CGAL::Gmpq>, CORE::Expr, and QD's dd_real (double-double, 106 bits) and
+// qd_real (quad-double, 212 bits).
 //
 // Pitfalls this layer absorbs (design note, section 2):
 // - Interval_nt<false> is only correct while the FPU rounds upward: run interval code inside a
@@ -31,11 +32,12 @@
 //   precision of everything they touch. Use nt::constant and nt::from_rational, never
 //   `NT(2)` or `NT(0.5)`, in generic code.
 // - Mpzf is a ring of dyadic numbers: no division; from_rational rejects non-dyadic input.
-// - dd_real (Debian's libqd-dev) is an unevaluated sum hi + lo of two doubles: 106 bits, but
-//   binary64's exponent range (hi near the overflow threshold or lo in the subnormals loses the
-//   extra bits), and correct only while the FPU rounds to nearest (never inside
-//   `with_interval_rounding`). Its value is a binary64 sum, so it converts to a Rational exactly
-//   (`nt::to_rational`). CGAL has no traits for it: sign, compare and the Eigen traits are here.
+// - dd_real and qd_real (Debian's libqd-dev) are unevaluated sums of two or four doubles: 106 or
+//   212 bits, but binary64's exponent range (a leading term near the overflow threshold or
+//   trailing terms in the subnormals lose the extra bits), and correct only while the FPU rounds
+//   to nearest (never inside `with_interval_rounding`). The value is a sum of doubles, so it
+//   converts to a Rational exactly (`nt::to_rational`). CGAL has no traits for them: sign,
+//   compare and the Eigen traits are here.
 #pragma once
 
 #include <CGAL/CORE_Expr.h>
@@ -47,8 +49,11 @@
 #include <CGAL/Mpzf.h>
 #include <CGAL/long_double.h>
 #include <CGAL/number_utils.h>
+#include <mpfr.h>
 #include <qd/dd_real.h>
+#include <qd/qd_real.h>
 
+#include <iterator>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -210,18 +215,48 @@ struct NumberTraits<CORE::Expr> {
   static CORE::Expr constant(long k) { return CORE::Expr(k); }
 };
 
+// QD's types.
+template <class NT>
+inline constexpr bool is_qd_v = std::is_same_v<NT, dd_real> || std::is_same_v<NT, qd_real>;
+
+// q 2^e in a QD type: each term the double nearest what the previous ones leave of q 2^e rounded
+// to 256 bits (so correctly rounded to 106 or 212 bits while the terms are normal numbers).
+template <class NT>
+  requires is_qd_v<NT>
+NT qd_from_rational(const Rational& q, long e = 0) {
+  constexpr int terms = std::is_same_v<NT, dd_real> ? 2 : 4;
+  double t[4] = {0, 0, 0, 0};
+  mpfr_t x;
+  mpfr_init2(x, 256);
+  mpfr_set_q(x, q.mpq(), MPFR_RNDN);
+  mpfr_mul_2si(x, x, e, MPFR_RNDN);
+  for (int i = 0; i < terms; ++i) {
+    t[i] = mpfr_get_d(x, MPFR_RNDN);
+    if (!std::isfinite(t[i]) || t[i] == 0) break;
+    mpfr_sub_d(x, x, t[i], MPFR_RNDN);
+  }
+  mpfr_clear(x);
+  if constexpr (terms == 2) {
+    return dd_real(t[0], t[1]);
+  } else {
+    return qd_real(t[0], t[1], t[2], t[3]);
+  }
+}
+
 template <>
 struct NumberTraits<dd_real> {
   static constexpr bool is_exact = false, is_certified = false, has_sqrt = true, is_field = true;
   static std::string name() { return "dd_real"; }
-  // hi = the double nearest q, lo = the double nearest q - hi: correctly rounded to 106 bits
-  // wherever hi and lo are normal numbers.
-  static dd_real from_rational(const Rational& q) {
-    const double hi = round_to_nearest<double>(q);
-    if (!std::isfinite(hi)) return dd_real(hi);
-    return dd_real(hi, round_to_nearest<double>(q - Rational(hi)));
-  }
+  static dd_real from_rational(const Rational& q) { return qd_from_rational<dd_real>(q); }
   static dd_real constant(long k) { return dd_real(static_cast<double>(k)); }
+};
+
+template <>
+struct NumberTraits<qd_real> {
+  static constexpr bool is_exact = false, is_certified = false, has_sqrt = true, is_field = true;
+  static std::string name() { return "qd_real"; }
+  static qd_real from_rational(const Rational& q) { return qd_from_rational<qd_real>(q); }
+  static qd_real constant(long k) { return qd_real(static_cast<double>(k)); }
 };
 
 // Satisfied by the types above.
@@ -250,7 +285,7 @@ std::string name() {
 
 template <class NT>
 CGAL::Sign sign(const NT& x) {
-  if constexpr (std::is_same_v<NT, dd_real>) {
+  if constexpr (is_qd_v<NT>) {
     return x.is_positive() ? CGAL::POSITIVE : x.is_negative() ? CGAL::NEGATIVE : CGAL::ZERO;
   } else {
     // For Interval_nt the Uncertain<Sign> converts here, throwing when undecided.
@@ -260,7 +295,7 @@ CGAL::Sign sign(const NT& x) {
 
 template <class NT>
 CGAL::Comparison_result compare(const NT& a, const NT& b) {
-  if constexpr (std::is_same_v<NT, dd_real>) {
+  if constexpr (is_qd_v<NT>) {
     return a < b ? CGAL::SMALLER : b < a ? CGAL::LARGER : CGAL::EQUAL;
   } else {
     return static_cast<CGAL::Comparison_result>(CGAL::compare(a, b));
@@ -301,7 +336,7 @@ NT sqrt(const NT& x) {
                 "Gmpfr or an interval, or a square-root-free formulation");
   if constexpr (std::is_floating_point_v<NT>) {
     return std::sqrt(x);
-  } else if constexpr (std::is_same_v<NT, dd_real>) {
+  } else if constexpr (is_qd_v<NT>) {
     return ::sqrt(x);
   } else {
     return CGAL::sqrt(x);
@@ -312,9 +347,10 @@ NT sqrt(const NT& x) {
 // Mpzf, Gmpfr, Lazy_exact_nt and CORE::Expr it is CGAL's enclosing conversion.
 template <class NT>
 std::pair<double, double> to_interval(const NT& x) {
-  if constexpr (std::is_same_v<NT, dd_real>) {
+  if constexpr (is_qd_v<NT>) {
     CGAL::Protect_FPU_rounding<true> upward;
-    const Interval sum = Interval(x.x[0]) + Interval(x.x[1]);
+    Interval sum(x.x[0]);
+    for (std::size_t i = 1; i < std::size(x.x); ++i) sum += Interval(x.x[i]);
     return {sum.inf(), sum.sup()};
   } else {
     return CGAL::to_interval(x);
@@ -324,35 +360,46 @@ std::pair<double, double> to_interval(const NT& x) {
 // The double nearest x where the type can tell it (exact types), an approximation otherwise.
 template <class NT>
 double to_double(const NT& x) {
-  if constexpr (std::is_same_v<NT, dd_real>) {
+  if constexpr (is_qd_v<NT>) {
     return x.x[0];
   } else {
     return CGAL::to_double(x);
   }
 }
 
-// The exact value of a finite dd_real.
-inline Rational to_rational(const dd_real& x) { return Rational(x.x[0]) + Rational(x.x[1]); }
+// The exact value of a finite dd_real or qd_real.
+template <class NT>
+  requires is_qd_v<NT>
+Rational to_rational(const NT& x) {
+  Rational r(x.x[0]);
+  for (std::size_t i = 1; i < std::size(x.x); ++i) r = r + Rational(x.x[i]);
+  return r;
+}
 
 }  // namespace nt
 }  // namespace certcyl
 
-// Eigen's traits for dd_real (CGAL provides those of its own types), so that Eigen's dense
-// solvers run on it.
+// Eigen's traits for dd_real and qd_real (CGAL provides those of its own types), so that
+// Eigen's dense solvers run on them.
 namespace Eigen {
 template <class>
 struct NumTraits;
-template <>
-struct NumTraits<dd_real> {
-  using Real = dd_real;
-  using NonInteger = dd_real;
-  using Nested = dd_real;
-  using Literal = dd_real;
-  static inline Real epsilon() { return dd_real::_eps; }
-  static inline Real dummy_precision() { return dd_real(1e-28); }
-  static inline Real highest() { return dd_real::_max; }
-  static inline Real lowest() { return -dd_real::_max; }
-  static inline int digits10() { return 31; }
+template <class QD>
+  requires certcyl::is_qd_v<QD>
+struct QdNumTraits {
+  using Real = QD;
+  using NonInteger = QD;
+  using Nested = QD;
+  using Literal = QD;
+  static inline Real epsilon() { return QD::_eps; }
+  static inline Real dummy_precision() { return QD(QD::_eps * 1024); }
+  static inline Real highest() { return QD::_max; }
+  static inline Real lowest() { return -QD::_max; }
+  static inline int digits10() { return std::is_same_v<QD, dd_real> ? 31 : 62; }
   enum { IsInteger = 0, IsSigned = 1, IsComplex = 0, RequireInitialization = 1, ReadCost = 2, AddCost = 10, MulCost = 10 };
 };
+template <>
+struct NumTraits<dd_real> : QdNumTraits<dd_real> {};
+template <>
+struct NumTraits<qd_real> : QdNumTraits<qd_real> {};
 }  // namespace Eigen

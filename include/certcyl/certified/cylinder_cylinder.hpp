@@ -877,35 +877,110 @@ class CylinderCylinderSolver {
   }
 
   // ---- stage refine -------------------------------------------------------------------------------------
+  // What one precision of the refine stage found: a decision, or the point to go on from.
+  template <class QD>
+  struct Refined {
+    bool decided = false;
+    bool near_touching = false;  // sigma(X) within the precision's noise of 1
+    std::optional<Point3<QD>> point;
+  };
+
+  // Newton's method on the optimality conditions in QD (dd_real or qd_real) from the world
+  // point X0; its point or its direction checked exactly.
+  template <class QD>
+  Refined<QD> refine_in(const Point3<QD>& X0, int epsilon_exponent, int touching_exponent) {
+    Refined<QD> r;
+    const auto to_q = [](double x) { return QD(x); };
+    // The world input in QD: exact for binary64 input, correctly rounded otherwise.
+    const auto rational_to_q = [this](const Rational& q) { return qd_from_rational<QD>(q, world_exponent_); };
+    const CylinderPair<QD> d = binary64_ ? CylinderPair<QD>::make(dbl_.c0.map(to_q), dbl_.c1.map(to_q))
+                                         : CylinderPair<QD>::make(exact_cylinder(0).map(rational_to_q), exact_cylinder(1).map(rational_to_q));
+    ActiveSetProblem<QD> problem(d, QD(std::ldexp(1.0, epsilon_exponent)));
+    const std::optional<ActiveSetOptimum<QD>> o = problem.solve(X0);
+    if (!o) return r;
+    result_.counters.newton_steps += static_cast<std::uint32_t>(o->iterations);
+    const auto finite_q = [](const QD& x) {
+      for (double t : x.x)
+        if (!std::isfinite(t)) return false;
+      return true;
+    };
+    if (!finite_q(o->value) || !finite_q(o->point.x) || !finite_q(o->point.y) || !finite_q(o->point.z)) return r;
+    r.point = o->point;
+    if (finite_q(o->direction.x) && finite_q(o->direction.y) && finite_q(o->direction.z)) {
+      Vec3<Rational> D = o->direction.map([](const QD& x) { return nt::to_rational(x); });
+      if (!(D.x == 0 && D.y == 0 && D.z == 0)) refined_ = std::move(D);
+    }
+    const QD excess = o->value - QD(1);
+    if (std::abs(excess.x[0]) < std::ldexp(1.0, touching_exponent)) {
+      r.near_touching = true;
+      return r;
+    }
+    if (excess.x[0] < 0) {
+      bound_by_point(o->point.map([](const QD& x) {
+        const auto [lo, hi] = nt::to_interval(x);
+        return Interval(lo, hi);
+      }));
+      r.decided = world_exact_ ? dyadic_overlaps(o->point) : exact_overlaps(world_to_input(o->point));
+    } else if (refined_) {
+      bound_by_direction(to_iv(*refined_));
+      r.decided = world_exact_ ? dyadic_separates(o->direction) : exact_separates(*refined_);
+    }
+    return r;
+  }
+
+  // Double-double from the optimiser's point; where it stalls short of a decision (the pieces
+  // meet almost tangentially and the system is ill-conditioned), quad-double from there.
   bool refine() {
     begin(CylinderStage::refine);
     if (!optimum_point_ || !finite(*optimum_point_)) return optimiser_exact() || pass();
-    const auto to_dd = [](double x) { return dd_real(x); };
-    // The world input in double-double: exact for binary64 input, rounded to 106 bits otherwise.
-    const auto rational_to_dd = [this](const Rational& q) { return nt::from_rational<dd_real>(times_two_power(q, world_exponent_)); };
-    const CylinderPair<dd_real> d = binary64_ ? CylinderPair<dd_real>::make(dbl_.c0.map(to_dd), dbl_.c1.map(to_dd))
-                                              : CylinderPair<dd_real>::make(exact_cylinder(0).map(rational_to_dd), exact_cylinder(1).map(rational_to_dd));
-    ActiveSetProblem<dd_real> problem(d, dd_real(std::ldexp(1.0, -96)));
-    const std::optional<ActiveSetOptimum<dd_real>> o = problem.solve(optimum_point_->map(to_dd));
-    if (!o) return optimiser_exact() || pass();
-    result_.counters.newton_steps += static_cast<std::uint32_t>(o->iterations);
-    const auto finite_dd = [](const dd_real& x) { return std::isfinite(x.x[0]) && std::isfinite(x.x[1]); };
-    if (!finite_dd(o->value) || !finite_dd(o->point.x) || !finite_dd(o->point.y) || !finite_dd(o->point.z)) return optimiser_exact() || pass();
-    const Vec3<Rational> D = o->direction.map([](const dd_real& x) { return nt::to_rational(x); });
-    if (finite_dd(o->direction.x) && finite_dd(o->direction.y) && finite_dd(o->direction.z) && !(D.x == 0 && D.y == 0 && D.z == 0))
-      refined_ = D;
-    // sigma(X) within 2^-98 of 1: touching, most likely; neither check could prove anything.
-    const dd_real excess = o->value - dd_real(1);
-    if (std::abs(excess.x[0]) < std::ldexp(1.0, -98)) return pass();
-    if (excess.x[0] < 0) {
-      const Point3<Rational> X = o->point.map([this](const dd_real& x) { return times_two_power(nt::to_rational(x), -world_exponent_); });
-      bound_by_point(world_iv(X));
-      if (exact_overlaps(X)) return true;
-    } else if (refined_) {
-      bound_by_direction(to_iv(*refined_));
-      if (exact_separates(*refined_)) return true;
+    const Refined<dd_real> dd = refine_in<dd_real>(optimum_point_->map([](double x) { return dd_real(x); }), -96, -98);
+    if (dd.decided) return true;
+    if (!dd.near_touching) {
+      const Point3<qd_real> start = dd.point ? dd.point->map([](const dd_real& x) { return qd_real(x); })
+                                             : optimum_point_->map([](double x) { return qd_real(x); });
+      const Refined<qd_real> qd = refine_in<qd_real>(start, -200, -200);
+      if (qd.decided) return true;
+      if (qd.near_touching) return pass();
+    } else {
+      return pass();
     }
     return optimiser_exact() || pass();
+  }
+
+  // Binary64 input in an exact world frame: a double-double candidate has dyadic coordinates,
+  // and is checked exactly in Mpzf against the world input (the signs are those of the input
+  // frame: the checks are homogeneous in the coordinates), without Gmpq's gcds.
+  const CylinderPair<CGAL::Mpzf>& world_mpzf() {
+    if (!mpzf_) {
+      const auto to_m = [](double x) { return CGAL::Mpzf(x); };
+      mpzf_ = CylinderPair<CGAL::Mpzf>::make(dbl_.c0.map(to_m), dbl_.c1.map(to_m));
+    }
+    return *mpzf_;
+  }
+  template <class QD>
+  static CGAL::Mpzf to_mpzf(const QD& x) {
+    CGAL::Mpzf m(x.x[0]);
+    for (std::size_t i = 1; i < std::size(x.x); ++i) m = m + CGAL::Mpzf(x.x[i]);
+    return m;
+  }
+  // A world point in QD, in the input frame exactly.
+  template <class QD>
+  Point3<Rational> world_to_input(const Point3<QD>& X) const {
+    return X.map([this](const QD& x) { return times_two_power(nt::to_rational(x), -world_exponent_); });
+  }
+  template <class QD>
+  bool dyadic_overlaps(const Point3<QD>& X) {
+    ++result_.counters.points_checked;
+    ++result_.counters.exact_checks;
+    last_check_ = CylinderArithmetic::exact;
+    return strictly_inside_both(world_mpzf(), X.map([](const QD& x) { return to_mpzf(x); })) && overlapping_at(world_to_input(X));
+  }
+  template <class QD>
+  bool dyadic_separates(const Vec3<QD>& D) {
+    ++result_.counters.directions_checked;
+    ++result_.counters.exact_checks;
+    last_check_ = CylinderArithmetic::exact;
+    return separation_sign(world_mpzf(), D.map([](const QD& x) { return to_mpzf(x); })) == CGAL::POSITIVE && separated_by(*refined_);
   }
 
   // ---- stage touching_exact -----------------------------------------------------------------------------
@@ -1137,6 +1212,7 @@ class CylinderCylinderSolver {
   CylinderPair<double> dbl_;  // world frame (nearest values when not binary64_)
   std::optional<CylinderPair<Interval>> iv_;
   std::optional<CylinderPair<Rational>> ex_;
+  std::optional<CylinderPair<CGAL::Mpzf>> mpzf_;
   std::optional<Vec3<double>> optimum_;
   std::optional<Point3<double>> optimum_point_;
   double optimum_value_ = std::numeric_limits<double>::infinity();

@@ -115,13 +115,19 @@ struct SeparationTerms {
   NT c, p, q;
 };
 
+// For a ring without division (Mpzf), the three numbers times k = A0.A0 A1.A1 > 0 (c k, p k^2,
+// q k^2): the sign of c - sqrt(p) - sqrt(q) is unchanged.
 template <class NT>
 SeparationTerms<NT> separation_terms(const CylinderPair<NT>& d, const Vec3<NT>& D) {
   const NT four = nt::constant<NT>(4);
   const NT c = abs_enclosure(dot(D, d.T)) - abs_enclosure(dot(D, d.A0)) - abs_enclosure(dot(D, d.A1));
-  const NT p = four * squared(d.c0.radius) * squared_norm(cross(D, d.A0)) / d.AA0;
-  const NT q = four * squared(d.c1.radius) * squared_norm(cross(D, d.A1)) / d.AA1;
-  return {c, p, q};
+  const NT p = four * squared(d.c0.radius) * squared_norm(cross(D, d.A0));
+  const NT q = four * squared(d.c1.radius) * squared_norm(cross(D, d.A1));
+  if constexpr (NumberTraits<NT>::is_field) {
+    return {c, p / d.AA0, q / d.AA1};
+  } else {
+    return {c * d.AA0 * d.AA1, p * d.AA0 * squared(d.AA1), q * squared(d.AA0) * d.AA1};
+  }
 }
 
 // Sign of |D.T| - phi2(D): POSITIVE when D separates the cylinders, ZERO when it supports
