@@ -10,8 +10,8 @@
 
 using namespace certcyl;
 
-using AllTypes = boost::mpl::list<double, long double, Interval, CGAL::Gmpq, CGAL::Mpzf, CGAL::Gmpfr, LazyRational, CORE::Expr>;
-using FieldTypes = boost::mpl::list<double, long double, Interval, CGAL::Gmpq, CGAL::Gmpfr, LazyRational, CORE::Expr>;
+using AllTypes = boost::mpl::list<double, long double, Interval, CGAL::Gmpq, CGAL::Mpzf, CGAL::Gmpfr, LazyRational, CORE::Expr, dd_real>;
+using FieldTypes = boost::mpl::list<double, long double, Interval, CGAL::Gmpq, CGAL::Gmpfr, LazyRational, CORE::Expr, dd_real>;
 
 // Hand-derived constants.
 //   1/3 = 0x0.5555...p0; nearest binary64 0x1.5555555555555p-2 (the next bit after the 52
@@ -103,6 +103,22 @@ BOOST_AUTO_TEST_CASE(conversion_of_one_third) {
   BOOST_CHECK_THROW(nt::from_rational<CGAL::Mpzf>(third), InvalidInput);
 }
 
+// 1/3 = third_down + 2^-54 / 3 (third_down = (2^54 - 1) / (3 2^54)), and the double nearest
+// 2^-54 / 3 is third_down 2^-54 = 0x1.5555555555555p-56: the double-double of 1/3 is that pair,
+// within 2^-108 / 3 of 1/3; times 2^10 it is the same pair scaled.
+BOOST_AUTO_TEST_CASE(double_double_of_one_third) {
+  const Rational third(1, 3);
+  const dd_real x = nt::from_rational<dd_real>(third);
+  BOOST_TEST(x.x[0] == third_down);
+  BOOST_TEST(x.x[1] == 0x1.5555555555555p-56);
+  BOOST_TEST(nt::to_rational(x) == Rational(third_down) + Rational(0x1.5555555555555p-56));
+  const dd_real y = qd_from_rational<dd_real>(third, 10);
+  BOOST_TEST(y.x[0] == std::ldexp(third_down, 10));
+  BOOST_TEST(y.x[1] == std::ldexp(0x1.5555555555555p-56, 10));
+  BOOST_TEST(nt::sign(dd_real(third_down) - x) == CGAL::NEGATIVE);
+  BOOST_TEST(nt::compare(x, dd_real(third_up)) == CGAL::SMALLER);
+}
+
 BOOST_AUTO_TEST_CASE(gmpfr_precision_is_chosen_at_run_time) {
   const Rational third(1, 3);
   {
@@ -135,7 +151,7 @@ BOOST_AUTO_TEST_CASE(mpzf_holds_dyadic_input_exactly) {
   BOOST_TEST(CGAL::sign(zero * CGAL::Mpzf(2)) == CGAL::ZERO);
 }
 
-using SqrtTypes = boost::mpl::list<double, long double, Interval, CGAL::Gmpfr, CORE::Expr>;
+using SqrtTypes = boost::mpl::list<double, long double, Interval, CGAL::Gmpfr, CORE::Expr, dd_real>;
 
 BOOST_AUTO_TEST_CASE_TEMPLATE(sqrt_where_the_type_has_one, NT, SqrtTypes) {
   NumberScope<NT> scope;

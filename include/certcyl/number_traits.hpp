@@ -18,8 +18,7 @@
 //   NumberTraits<NT>::name()         a printable name ("double", "Gmpfr<113>", ...)
 //
 // Types: double, long double, CGAL::Interval_nt<false>, CGAL::Gmpq, CGAL::Mpzf, CGAL::Gmpfr,
-// CGAL::Lazy_exact_nt<CGAL::Gmpq>, CORE::Expr, and QD's dd_real (double-double, 106 bits) and
-// qd_real (quad-double, 212 bits).
+// CGAL::Lazy_exact_nt<CGAL::Gmpq>, CORE::Expr, and QD's dd_real (double-double, 106 bits).
 //
 // Pitfalls this layer absorbs (design note, section 2):
 // - Interval_nt<false> is only correct while the FPU rounds upward: run interval code inside a
@@ -32,12 +31,12 @@
 //   precision of everything they touch. Use nt::constant and nt::from_rational, never
 //   `NT(2)` or `NT(0.5)`, in generic code.
 // - Mpzf is a ring of dyadic numbers: no division; from_rational rejects non-dyadic input.
-// - dd_real and qd_real (Debian's libqd-dev) are unevaluated sums of two or four doubles: 106 or
-//   212 bits, but binary64's exponent range (a leading term near the overflow threshold or
-//   trailing terms in the subnormals lose the extra bits), and correct only while the FPU rounds
-//   to nearest (never inside `with_interval_rounding`). The value is a sum of doubles, so it
-//   converts to a Rational exactly (`nt::to_rational`). CGAL has no traits for them: sign,
-//   compare and the Eigen traits are here.
+// - dd_real (Debian's libqd-dev) is an unevaluated sum of two doubles: 106 bits, but binary64's
+//   exponent range (a leading term near the overflow threshold or a trailing term in the
+//   subnormals loses the extra bits), and correct only while the FPU rounds to nearest (never
+//   inside `with_interval_rounding`). The value is a sum of doubles, so it converts to a
+//   Rational exactly (`nt::to_rational`). CGAL has no traits for it: sign, compare and the
+//   Eigen traits are here.
 #pragma once
 
 #include <CGAL/CORE_Expr.h>
@@ -51,7 +50,6 @@
 #include <CGAL/number_utils.h>
 #include <mpfr.h>
 #include <qd/dd_real.h>
-#include <qd/qd_real.h>
 
 #include <iterator>
 #include <string>
@@ -215,17 +213,17 @@ struct NumberTraits<CORE::Expr> {
   static CORE::Expr constant(long k) { return CORE::Expr(k); }
 };
 
-// QD's types.
+// QD's double-double.
 template <class NT>
-inline constexpr bool is_qd_v = std::is_same_v<NT, dd_real> || std::is_same_v<NT, qd_real>;
+inline constexpr bool is_qd_v = std::is_same_v<NT, dd_real>;
 
-// q 2^e in a QD type: each term the double nearest what the previous ones leave of q 2^e rounded
-// to 256 bits (so correctly rounded to 106 or 212 bits while the terms are normal numbers).
+// q 2^e as a dd_real: each term the double nearest what the previous one leaves of q 2^e
+// rounded to 256 bits (so correctly rounded to 106 bits while the terms are normal numbers).
 template <class NT>
   requires is_qd_v<NT>
 NT qd_from_rational(const Rational& q, long e = 0) {
-  constexpr int terms = std::is_same_v<NT, dd_real> ? 2 : 4;
-  double t[4] = {0, 0, 0, 0};
+  constexpr int terms = 2;
+  double t[2] = {0, 0};
   mpfr_t x;
   mpfr_init2(x, 256);
   mpfr_set_q(x, q.mpq(), MPFR_RNDN);
@@ -236,11 +234,7 @@ NT qd_from_rational(const Rational& q, long e = 0) {
     mpfr_sub_d(x, x, t[i], MPFR_RNDN);
   }
   mpfr_clear(x);
-  if constexpr (terms == 2) {
-    return dd_real(t[0], t[1]);
-  } else {
-    return qd_real(t[0], t[1], t[2], t[3]);
-  }
+  return dd_real(t[0], t[1]);
 }
 
 template <>
@@ -249,14 +243,6 @@ struct NumberTraits<dd_real> {
   static std::string name() { return "dd_real"; }
   static dd_real from_rational(const Rational& q) { return qd_from_rational<dd_real>(q); }
   static dd_real constant(long k) { return dd_real(static_cast<double>(k)); }
-};
-
-template <>
-struct NumberTraits<qd_real> {
-  static constexpr bool is_exact = false, is_certified = false, has_sqrt = true, is_field = true;
-  static std::string name() { return "qd_real"; }
-  static qd_real from_rational(const Rational& q) { return qd_from_rational<qd_real>(q); }
-  static qd_real constant(long k) { return qd_real(static_cast<double>(k)); }
 };
 
 // Satisfied by the types above.
@@ -367,7 +353,7 @@ double to_double(const NT& x) {
   }
 }
 
-// The exact value of a finite dd_real or qd_real.
+// The exact value of a finite dd_real.
 template <class NT>
   requires is_qd_v<NT>
 Rational to_rational(const NT& x) {
@@ -379,8 +365,8 @@ Rational to_rational(const NT& x) {
 }  // namespace nt
 }  // namespace certcyl
 
-// Eigen's traits for dd_real and qd_real (CGAL provides those of its own types), so that
-// Eigen's dense solvers run on them.
+// Eigen's traits for dd_real (CGAL provides those of its own types), so that Eigen's dense
+// solvers run on it.
 namespace Eigen {
 template <class>
 struct NumTraits;
@@ -395,11 +381,9 @@ struct QdNumTraits {
   static inline Real dummy_precision() { return QD(QD::_eps * 1024); }
   static inline Real highest() { return QD::_max; }
   static inline Real lowest() { return -QD::_max; }
-  static inline int digits10() { return std::is_same_v<QD, dd_real> ? 31 : 62; }
+  static inline int digits10() { return 31; }
   enum { IsInteger = 0, IsSigned = 1, IsComplex = 0, RequireInitialization = 1, ReadCost = 2, AddCost = 10, MulCost = 10 };
 };
 template <>
 struct NumTraits<dd_real> : QdNumTraits<dd_real> {};
-template <>
-struct NumTraits<qd_real> : QdNumTraits<qd_real> {};
 }  // namespace Eigen

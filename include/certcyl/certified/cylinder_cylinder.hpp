@@ -885,7 +885,7 @@ class CylinderCylinderSolver {
     std::optional<Point3<QD>> point;
   };
 
-  // Newton's method on the optimality conditions in QD (dd_real or qd_real) from the world
+  // Newton's method on the optimality conditions in QD (dd_real) from the world
   // point X0; its point or its direction checked exactly.
   template <class QD>
   Refined<QD> refine_in(const Point3<QD>& X0, int epsilon_exponent, int touching_exponent) {
@@ -928,22 +928,45 @@ class CylinderCylinderSolver {
     return r;
   }
 
+  // The smoothing path of the optimiser (detail/cylinder_optimiser.hpp) in QD, to 2^-mu of the
+  // value: slower than Newton's method on the optimality conditions but indifferent to how the
+  // pieces meet; its direction and point checked exactly.
+  template <class QD>
+  bool smoothed_in(int mu, int stop) {
+    const auto to_q = [](double x) { return QD(x); };
+    const auto rational_to_q = [this](const Rational& q) { return qd_from_rational<QD>(q, world_exponent_); };
+    const CylinderPair<QD> d = binary64_ ? CylinderPair<QD>::make(dbl_.c0.map(to_q), dbl_.c1.map(to_q))
+                                         : CylinderPair<QD>::make(exact_cylinder(0).map(rational_to_q), exact_cylinder(1).map(rational_to_q));
+    PlaneProblem<QD> problem(d, mu);
+    const PlaneMinimum<QD> m = problem.minimise(true, stop);
+    result_.counters.newton_steps += static_cast<std::uint32_t>(m.iterations);
+    const auto finite_q = [](const QD& x) {
+      for (double t : x.x)
+        if (!std::isfinite(t)) return false;
+      return true;
+    };
+    if (finite_q(m.value) && m.value < QD(1) && finite_q(m.direction.x) && finite_q(m.direction.y) && finite_q(m.direction.z)) {
+      Vec3<Rational> D = m.direction.map([](const QD& x) { return nt::to_rational(x); });
+      if (!(D.x == 0 && D.y == 0 && D.z == 0)) {
+        refined_ = std::move(D);
+        if (world_exact_ ? dyadic_separates(m.direction) : exact_separates(*refined_)) return true;
+      }
+    }
+    if (finite_q(m.point.x) && finite_q(m.point.y) && finite_q(m.point.z))
+      return world_exact_ ? dyadic_overlaps(m.point) : exact_overlaps(world_to_input(m.point));
+    return false;
+  }
+
   // Double-double from the optimiser's point; where it stalls short of a decision (the pieces
-  // meet almost tangentially and the system is ill-conditioned), quad-double from there.
+  // meet almost tangentially and the system is ill-conditioned), the smoothing path in
+  // double-double.
   bool refine() {
     begin(CylinderStage::refine);
     if (!optimum_point_ || !finite(*optimum_point_)) return optimiser_exact() || pass();
     const Refined<dd_real> dd = refine_in<dd_real>(optimum_point_->map([](double x) { return dd_real(x); }), -96, -98);
     if (dd.decided) return true;
-    if (!dd.near_touching) {
-      const Point3<qd_real> start = dd.point ? dd.point->map([](const dd_real& x) { return qd_real(x); })
-                                             : optimum_point_->map([](double x) { return qd_real(x); });
-      const Refined<qd_real> qd = refine_in<qd_real>(start, -200, -200);
-      if (qd.decided) return true;
-      if (qd.near_touching) return pass();
-    } else {
-      return pass();
-    }
+    if (dd.near_touching) return pass();
+    if (smoothed_in<dd_real>(96, 60)) return true;
     return optimiser_exact() || pass();
   }
 

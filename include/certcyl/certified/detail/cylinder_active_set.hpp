@@ -250,7 +250,12 @@ class ActiveSetProblem {
       // Gone far from X0 (it starts near the optimum): a wrong active set.
       const Vec3<NT> moved = s.X - X0;
       if (nt::compare(dot(moved, moved), NT(nt::constant<NT>(4) * size * size)) == CGAL::LARGER) return std::nullopt;
-      last_phi_step = abs_enclosure(step(3));
+      // Stalled: a phi step below 2^-64 that no longer halves is the noise of an ill-conditioned
+      // system; more steps do not help (see below).
+      const NT phi_step = abs_enclosure(step(3));
+      const NT small = nt::constant<NT>(1) / (nt::constant<NT>(1L << 32) * nt::constant<NT>(1L << 32));
+      if (nt::compare(phi_step, small) != CGAL::LARGER && nt::compare(NT(phi_step + phi_step), last_phi_step) != CGAL::SMALLER) return s;
+      last_phi_step = phi_step;
     }
     // Not converged to epsilon: where the pieces meet almost tangentially the system is
     // ill-conditioned, and X and phi stall at the noise of NT amplified. A phi that stalled below
