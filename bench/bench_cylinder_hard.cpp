@@ -21,7 +21,8 @@
 // and max over the instances, each also as a ratio to the mean on the random pairs of
 // bench_cylinder_cylinder (measured at start-up in this run); the answers; the stage that
 // decided most instances; and FCL's agreement with the certified answer (a collision reported
-// for touching and overlapping pairs). BM_hard_refine_off repeats the 2^-60 families with the
+// for touching and overlapping pairs). The exit status is 1 when an answer contradicts the
+// construction or is undecided. BM_hard_refine_off repeats the 2^-60 families with the
 // refine stage off (the Gmpfr stage then decides), for the stage's effect in the same run.
 #include <benchmark/benchmark.h>
 
@@ -29,6 +30,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <random>
 #include <string>
@@ -56,7 +58,14 @@ struct HardPair {
 struct Family {
   std::string name;  // "rim-wall, rotated, -2^-40"
   std::vector<HardPair> pairs;
+  // The answer known by construction: touching; separated when moved apart along a contact
+  // normal; overlapping when moved into each other and the contact has one normal (every type
+  // but rim-rim). Unknown (undecided here) otherwise.
+  certcyl::Answer expected = certcyl::Answer::undecided;
 };
+
+// Answers that contradict the construction, or undecided ones, over the run: the exit status.
+int contradictions = 0;
 
 double to_d(const Rational& q) {
   double d;
@@ -146,7 +155,10 @@ std::vector<Family> make_families() {
   for (const cctest::TouchingCase& c : cases) {
     for (const bool rotated : {false, true}) {
       for (const std::string& distance : distances) {
-        Family f{c.name + (rotated ? ", rotated, " : ", axis-aligned, ") + distance, {}};
+        Family f{c.name + (rotated ? ", rotated, " : ", axis-aligned, ") + distance, {}, certcyl::Answer::undecided};
+        if (distance == "touching") f.expected = certcyl::Answer::touching;
+        else if (distance[0] == '+') f.expected = certcyl::Answer::separated;
+        else if (c.type != "rim-rim") f.expected = certcyl::Answer::overlapping;
         for (int i = 0; i < kInstances; ++i) {
           std::array<int, 4> q{};
           do {
@@ -196,7 +208,7 @@ std::vector<Family> make_families() {
     }
     // Rounded: a random double rotation, applied in double (the pair is then within about an
     // ulp of touching, on either side).
-    Family f{c.name + ", rounded, ~1 ulp", {}};
+    Family f{c.name + ", rounded, ~1 ulp", {}, certcyl::Answer::undecided};
     for (int i = 0; i < kInstances; ++i) {
       double w[4];
       double norm = 0;
@@ -289,6 +301,10 @@ void run_family(benchmark::State& state, const Family& f, bool refine) {
     const certcyl::CylinderCylinderResult r = query(p, o);
     ++stages[std::string(certcyl::to_string(r.stage))];
     ++answers[static_cast<std::size_t>(r.answer)];
+    if (r.answer == certcyl::Answer::undecided || (f.expected != certcyl::Answer::undecided && r.answer != f.expected)) {
+      ++contradictions;
+      std::fprintf(stderr, "bench_cylinder_hard: %s: answer %s\n", f.name.c_str(), std::string(certcyl::to_string(r.answer)).c_str());
+    }
 #ifdef CERTCYL_HAVE_FCL
     if (p.binary64) {
       ++fcl_run;
@@ -332,4 +348,13 @@ const bool registered = [] {
 
 }  // namespace
 
-BENCHMARK_MAIN();
+// Google Benchmark's main, and a non-zero exit status when an answer contradicted the
+// construction or was undecided (the smoke run in the tests relies on it).
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  if (contradictions > 0) std::fprintf(stderr, "bench_cylinder_hard: %d answers contradict the construction or are undecided\n", contradictions);
+  return contradictions > 0 ? 1 : 0;
+}

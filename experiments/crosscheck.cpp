@@ -11,8 +11,9 @@
 // (failures are printed there as they are found, with their exact input);
 // --profile (cylinder pairs) prints where the time goes, per kind of case and per stage.
 // Prints whether assertions are on, then cases, re-checked answers, wrong answers and crashes per
-// query; exits 1 if any answer was wrong or any query threw. scripts/crosscheck.sh builds it with
-// CGAL's and the standard library's assertions on and runs it.
+// query; exits 1 if any answer was wrong, any cylinder pair undecided or any query threw.
+// scripts/crosscheck.sh builds it with CGAL's and the standard library's assertions on and runs
+// it.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -183,7 +184,7 @@ int main(int argc, char** argv) {
               << " s wall, " << cpu << " s CPU\n";
     if (o.profile && !s.profile.empty()) print_profile(std::cout, s);
     std::cout << std::flush;
-    bad = bad || s.wrong != 0 || s.crashes != 0;
+    bad = bad || s.wrong != 0 || s.crashes != 0 || s.undecided != 0;
   };
   using namespace certcyl::crosscheck;
   run("line", 0, [](std::uint64_t i, std::uint64_t seed, Stats& st) { check_line_case(i, seed, st); });

@@ -17,7 +17,8 @@
 //   scaled       every coordinate (and radius, direction) times 2^k, k in [-40, 40];
 //   permuted     the coordinates (x, y, z) -> (y, z, x) or (y, x, z).
 // A mismatch or a failed re-check is a wrong answer; an exception is a crash (the certified
-// queries throw only on their own defects).
+// queries throw only on their own defects); an undecided cylinder pair is a failure too (the
+// query runs with its default options, which set no resource limit).
 #pragma once
 
 #include <array>
@@ -67,7 +68,7 @@ struct Stats {
   std::uint64_t evaluations = 0;  // certified queries run (cases times their variants)
   std::uint64_t wrong = 0;        // failed re-checks or broken invariances
   std::uint64_t crashes = 0;      // exceptions out of a certified query
-  std::uint64_t undecided = 0;    // answers without a claim (cylinder pairs only)
+  std::uint64_t undecided = 0;    // undecided answers (cylinder pairs only): failures
   std::array<std::uint64_t, 4> by_answer{};  // of the original cases
   std::vector<Failure> failures;             // the first few, for the report
   std::map<std::string, KindProfile> profile;  // cylinder pairs only
@@ -539,7 +540,7 @@ inline void check_cylinder_pair_case(std::uint64_t i, std::uint64_t seed, Stats&
       const Clock::time_point t0 = kp ? Clock::now() : Clock::time_point{};
       const CylinderCylinderResult r = certified_cylinder_cylinder(a, b);
       const Clock::time_point t1 = kp ? Clock::now() : Clock::time_point{};
-      if (r.answer == Answer::undecided) ++st.undecided;
+      if (r.answer == Answer::undecided) fail(st.undecided, what + ": undecided without a resource limit");
       if (const std::string e = recheck::check_cylinder_pair(a, b, r); !e.empty()) fail(st.wrong, what + ": " + e);
       if (kp) {
         ++kp->evaluations;
@@ -553,7 +554,7 @@ inline void check_cylinder_pair_case(std::uint64_t i, std::uint64_t seed, Stats&
     };
     const Answer base = eval(c.a, c.b, "original");
     ++st.by_answer[static_cast<int>(base)];
-    // Undecided is no claim: it may differ from a decided answer without being wrong.
+    // An undecided answer is already a failure (above); decided answers must agree.
     const auto same = [&](Answer x, const std::string& what) {
       if (x != base && x != Answer::undecided && base != Answer::undecided)
         fail(st.wrong, what + ": " + std::string(to_string(x)) + " vs " + std::string(to_string(base)));

@@ -1,7 +1,9 @@
 // Fuzz harness: certified cylinder against cylinder, every certificate re-checked exactly by
 // fuzz/recheck.hpp (the separating direction re-evaluated in Gmpq with the squaring rule, the
 // witness point tested in Gmpq). Input (fuzz_input.hpp): two cylinders p0, p1, radius; the
-// pair is also run swapped, and a decided answer must not change.
+// pair is also run swapped, and the answer must not change. The query runs with its default
+// options (no resource limit), so an undecided answer is a failure too: the query must decide
+// every valid input.
 #include "certcyl/certified/cylinder_cylinder.hpp"
 #include "fuzz_input.hpp"
 #include "recheck.hpp"
@@ -18,13 +20,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const InvalidInput&) {
     return 0;
   }
-  CylinderCylinderOptions options;
-  options.max_precision = 256;  // keeps one input under a second; undecided is never wrong
-  const CylinderCylinderResult r = certified_cylinder_cylinder(a, b, options);
+  const CylinderCylinderResult r = certified_cylinder_cylinder(a, b);
   if (const std::string f = recheck::check_cylinder_pair(a, b, r); !f.empty()) fuzz::wrong_answer(f);
-  const CylinderCylinderResult s = certified_cylinder_cylinder(b, a, options);
+  if (r.answer == Answer::undecided) fuzz::failure("UNDECIDED without a resource limit");
+  const CylinderCylinderResult s = certified_cylinder_cylinder(b, a);
   if (const std::string f = recheck::check_cylinder_pair(b, a, s); !f.empty()) fuzz::wrong_answer("swapped: " + f);
-  if (r.answer != s.answer && r.answer != Answer::undecided && s.answer != Answer::undecided)
-    fuzz::wrong_answer("swapping the cylinders changed the answer");
+  if (s.answer == Answer::undecided) fuzz::failure("UNDECIDED without a resource limit (swapped)");
+  if (r.answer != s.answer) fuzz::wrong_answer("swapping the cylinders changed the answer");
   return 0;
 }

@@ -65,10 +65,13 @@ class ByteReader {
   bool finite_ = true;
 };
 
-// A wrong answer: print what failed and abort, so the fuzzer saves the input.
-[[noreturn]] inline void wrong_answer(const std::string& what) {
-  std::cerr << "WRONG CERTIFIED ANSWER: " << what << std::endl;
+// A failure: print what failed and abort, so the fuzzer saves the input.
+[[noreturn]] inline void failure(const std::string& what) {
+  std::cerr << what << std::endl;
   std::abort();
 }
+
+// A wrong answer.
+[[noreturn]] inline void wrong_answer(const std::string& what) { failure("WRONG CERTIFIED ANSWER: " + what); }
 
 }  // namespace certcyl::fuzz

@@ -5,8 +5,8 @@
 # repository's corpus is left unchanged).
 #   scripts/fuzz.sh [seconds]     default 60 s per harness
 # Prints the executions per harness; exits non-zero if a harness found a crash, a hang (one
-# input over 10 s), a memory blow-up, a leak, undefined behaviour or a wrong certified answer
-# (the input is kept in build-sanitize/findings/).
+# input over 10 s), a memory blow-up, a leak, undefined behaviour, a wrong certified answer or an
+# undecided cylinder pair (the input is kept in build-sanitize/findings/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
@@ -25,7 +25,7 @@ for h in "${harnesses[@]}"; do
       -artifact_prefix="$build/findings/$h-" -print_final_stats=1 > "$log" 2>&1; then
     status=1
     echo "fuzz: $h FAILED (log $log):"
-    grep -m 20 -E "ERROR|WRONG|SUMMARY|runtime error|Test unit written" "$log" || tail -20 "$log"
+    grep -m 20 -E "ERROR|WRONG|UNDECIDED|SUMMARY|runtime error|Test unit written" "$log" || tail -20 "$log"
   fi
   runs=$(grep -m1 -oE "stat::number_of_executed_units: *[0-9]+" "$log" | grep -oE "[0-9]+$" || echo "?")
   summary+=("$h: $runs executions in ${seconds} s")
