@@ -34,8 +34,10 @@
 //     uniform
 //   cylinder pairs:
 //     c_cap_cap, c_wall_parallel, c_wall_crossing, c_cap_wall, c_near_parallel (skew axes at
-//     angle 2^-j, wall contact), c_coaxial (nested, overlapping), c_equal_midpoints,
-//     c_crossing_rotated (rounded), uniform
+//     angle 2^-j, wall contact), c_rim_cap, c_rim_wall, c_rim_rim (a's rim against b's cap,
+//     wall or rim; a's radius moved: larger overlaps, except rim-rim, which stays touching),
+//     c_coaxial
+//     (nested, overlapping), c_equal_midpoints, c_crossing_rotated (rounded), uniform
 #pragma once
 
 #include <cmath>
@@ -526,6 +528,43 @@ inline std::vector<Family> cylinder_families() {
                  nudge(m, a.i1, k);
                  const V dir = (a.h / 2) * a.ea() + std::ldexp(rng.dyadic(0.5, 1), -static_cast<int>(rng.integer(4, 50))) * a.e2();
                  return pair(a.p0(), a.p1(), a.r, m - dir, m + dir, rb, side(k, a.s1, Expected::separated, Expected::overlapping));
+               }});
+  // Rim contacts: a's rim point P = p1 + r e1 touches b, and n = 3 e1 + 4 ea (length 5) is a
+  // contact normal: a lies in {X.n <= P.n} with P its only point on that plane, b in
+  // {X.n >= P.n}, so a and b meet at P alone. The radius of a is moved by k ulps (P and b stay):
+  // smaller, a no longer reaches P (separated); larger, a's widened rim enters b near P
+  // (overlapping), except for rim-rim (below).
+  const auto rim_point = [](const Aligned& a) { return a.p1() + a.r * a.e1(); };
+  const auto rim_normal = [](const Aligned& a) { return 3.0 * a.e1() + 4.0 * a.ea(); };
+  // b's bottom cap lies in the plane {X.n = P.n}, P inside the cap disc: b0 = P + t e2, |t| < rb.
+  f.push_back({"c_rim_cap", cq, [=](Rng& rng, Query, long long k) {
+                 const Aligned a = random_aligned(rng);
+                 const double rb = rng.dyadic(0.25, 2), t = rb * rng.dyadic(-0.5, 0.5), s = rng.dyadic(0.125, 0.75);
+                 const V b0 = rim_point(a) + t * a.e2();
+                 return pair(a.p0(), a.p1(), ulp_step(a.r, k), b0, b0 + s * rim_normal(a), rb,
+                             side(k, 1, Expected::overlapping, Expected::separated));
+               }});
+  // b's axis at height rb above P along n (rb = 5 rho, so P + rho n is exact), direction
+  // u = 4 e1 - 3 ea + lambda e2, orthogonal to n: b's wall passes through P.
+  f.push_back({"c_rim_wall", cq, [=](Rng& rng, Query, long long k) {
+                 const Aligned a = random_aligned(rng);
+                 const double rho = rng.dyadic(0.0625, 0.4), lambda = rng.dyadic(-2, 2, 3), s = rng.dyadic(0.125, 0.75);
+                 const V q = rim_point(a) + rho * rim_normal(a);
+                 const V u = 4.0 * a.e1() - 3.0 * a.ea() + lambda * a.e2();
+                 return pair(a.p0(), a.p1(), ulp_step(a.r, k), q - s * u, q + s * u, 5 * rho,
+                             side(k, 1, Expected::overlapping, Expected::separated));
+               }});
+  // b's axis along m = 4 e1 + 3 ea (m.n = 24, so b's support point in direction -n is on its
+  // bottom rim, at b0 + rb (3 e1 - 4 ea) / 5): b0 = P + rho (-3 e1 + 4 ea) with rb = 5 rho.
+  // P is also b's only lowest point along ea (b0 + rb (3 e1 - 4 ea) / 5 again), so b lies on
+  // a's top cap plane's far side: with a larger radius, P is inside a's top cap disc and b
+  // rests on it (rim against cap): still touching.
+  f.push_back({"c_rim_rim", cq, [=](Rng& rng, Query, long long k) {
+                 const Aligned a = random_aligned(rng);
+                 const double rho = rng.dyadic(0.0625, 0.4), s = rng.dyadic(0.125, 0.75);
+                 const V b0 = rim_point(a) + rho * (-3.0 * a.e1() + 4.0 * a.ea());
+                 return pair(a.p0(), a.p1(), ulp_step(a.r, k), b0, b0 + s * (4.0 * a.e1() + 3.0 * a.ea()), 5 * rho,
+                             side(k, 1, Expected::touching, Expected::separated));
                }});
   f.push_back({"c_coaxial", cq, [=](Rng& rng, Query, long long) {
                  const Aligned a = random_aligned(rng);
