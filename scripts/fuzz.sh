@@ -6,7 +6,7 @@
 #   scripts/fuzz.sh [seconds]     default 60 s per harness
 # Prints the executions per harness; exits non-zero if a harness found a crash, a hang (one
 # input over 10 s), a memory blow-up, a leak, undefined behaviour, a wrong certified answer or an
-# undecided cylinder pair (the input is kept in build-sanitize/findings/).
+# undecided cylinder pair of narrow span (the input is kept in build-sanitize/findings/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"

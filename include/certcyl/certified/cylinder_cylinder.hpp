@@ -306,6 +306,25 @@ inline Rational times_two_power(const Rational& x, long j) {
   return y;
 }
 
+// The span in binades of an exact pair (CylinderCylinderOptions::max_precision): from the
+// smallest nonzero magnitude among the radii and the coordinates of A0, A1 and T (the sizes the
+// geometry works at) to the largest coordinate or radius (what a rounded Gmpfr input loses its
+// bits against). The digits of a rational do not count: the Gmpfr rounds only produce
+// candidates, and every check is exact.
+inline long cylinder_pair_span_bits(const CylinderPair<Rational>& e) {
+  // floor(log2 |q|) within one, for q != 0.
+  const auto binade = [](const Rational& q) {
+    return static_cast<long>(mpz_sizeinbase(mpq_numref(q.mpq()), 2)) - static_cast<long>(mpz_sizeinbase(mpq_denref(q.mpq()), 2));
+  };
+  long hi = std::numeric_limits<long>::min(), lo = std::numeric_limits<long>::max();
+  for (const Cylinder<Rational>* c : {&e.c0, &e.c1})
+    for (const Rational* q : {&c->p0.x, &c->p0.y, &c->p0.z, &c->p1.x, &c->p1.y, &c->p1.z, &c->radius})
+      if (mpq_sgn(q->mpq()) != 0) hi = std::max(hi, binade(*q));
+  for (const Rational* q : {&e.c0.radius, &e.c1.radius, &e.A0.x, &e.A0.y, &e.A0.z, &e.A1.x, &e.A1.y, &e.A1.z, &e.T.x, &e.T.y, &e.T.z})
+    if (mpq_sgn(q->mpq()) != 0) lo = std::min(lo, binade(*q));
+  return std::max(0L, hi - lo + 2);
+}
+
 // Frames. Binary64 input (the double overload, or Rational input whose every number is a
 // binary64 value) is moved to the "world" frame, multiplied by 2^k so that its largest
 // magnitude lies in [1, 2) (exact, checked; k = 0 when the scaling would not be exact). All
@@ -963,7 +982,18 @@ class CylinderCylinderSolver {
   bool refine() {
     begin(CylinderStage::refine);
     if (!optimum_point_ || !finite(*optimum_point_)) return optimiser_exact() || pass();
-    const Refined<dd_real> dd = refine_in<dd_real>(optimum_point_->map([](double x) { return dd_real(x); }), -96, -98);
+    // The same Newton iteration in double first (a double-double step costs about ten double
+    // ones): from its point, double-double needs a step or two.
+    Point3<double> start = *optimum_point_;
+    {
+      ActiveSetProblem<double> problem(dbl_, std::ldexp(1.0, -48));
+      const std::optional<ActiveSetOptimum<double>> o = problem.solve(start);
+      if (o && finite(o->point)) {
+        result_.counters.newton_steps += static_cast<std::uint32_t>(o->iterations);
+        start = o->point;
+      }
+    }
+    const Refined<dd_real> dd = refine_in<dd_real>(start.map([](double x) { return dd_real(x); }), -96, -98);
     if (dd.decided) return true;
     if (dd.near_touching) return pass();
     if (smoothed_in<dd_real>(96, 60)) return true;
@@ -1064,25 +1094,7 @@ class CylinderCylinderSolver {
   }
 
   // ---- stage gmpfr --------------------------------------------------------------------------------------
-  // The span in binades of the exact input (CylinderCylinderOptions::max_precision): from the
-  // smallest nonzero magnitude among the radii and the coordinates of A0, A1 and T (the sizes
-  // the geometry works at) to the largest coordinate or radius (what a rounded Gmpfr input
-  // loses its bits against). The digits of a rational do not count: the Gmpfr rounds only
-  // produce candidates, and every check is exact.
-  long input_span_bits() {
-    const CylinderPair<Rational>& e = exact();
-    // floor(log2 |q|) within one, for q != 0.
-    const auto binade = [](const Rational& q) {
-      return static_cast<long>(mpz_sizeinbase(mpq_numref(q.mpq()), 2)) - static_cast<long>(mpz_sizeinbase(mpq_denref(q.mpq()), 2));
-    };
-    long hi = std::numeric_limits<long>::min(), lo = std::numeric_limits<long>::max();
-    for (const Cylinder<Rational>* c : {&e.c0, &e.c1})
-      for (const Rational* q : {&c->p0.x, &c->p0.y, &c->p0.z, &c->p1.x, &c->p1.y, &c->p1.z, &c->radius})
-        if (mpq_sgn(q->mpq()) != 0) hi = std::max(hi, binade(*q));
-    for (const Rational* q : {&e.c0.radius, &e.c1.radius, &e.A0.x, &e.A0.y, &e.A0.z, &e.A1.x, &e.A1.y, &e.A1.z, &e.T.x, &e.T.y, &e.T.z})
-      if (mpq_sgn(q->mpq()) != 0) lo = std::min(lo, binade(*q));
-    return std::max(0L, hi - lo + 2);
-  }
+  long input_span_bits() { return cylinder_pair_span_bits(exact()); }
 
   // Exact candidates, before any Gmpfr round: the midpoints m0, m1 as witnesses (each is interior
   // to its own cylinder; in double they may be rounded off a needle's axis), and the directions

@@ -49,8 +49,17 @@ struct ActiveSetOptimum {
 template <class NT>
 class ActiveSetProblem {
  public:
-  // epsilon: the relative step below which Newton's method has converged (2^-100 for dd_real).
+  // epsilon: the relative step below which Newton's method has converged, 2^-b (2^-96 for
+  // dd_real, 2^-48 for double). The other thresholds scale with b: rho = 2^(-5b/6) / L^2 (2^-80
+  // for dd_real: the system's conditioning, 2^(5b/6), stays well inside the precision), the
+  // multiplier and joining tolerances 2^(-5b/6), a stalled phi step 2^(-2b/3).
   ActiveSetProblem(const CylinderPair<NT>& d, const NT& epsilon) : d_(d), epsilon_(epsilon) {
+    int b = 0;
+    std::frexp(nt::to_double(epsilon), &b);
+    b = 1 - b;
+    const auto two_power = [](int e) { return nt::from_rational<NT>(Rational(std::ldexp(1.0, e))); };
+    fine_ = two_power(-(5 * b) / 6);
+    stall_ = two_power(-(2 * b) / 3);
     const NT two = nt::constant<NT>(2);
     m_[0] = (d.c0.p0 + d.c0.p1) / two;
     m_[1] = (d.c1.p0 + d.c1.p1) / two;
@@ -64,7 +73,7 @@ class ActiveSetProblem {
       c_[i] = nt::constant<NT>(1) / (*r[i] * nt::sqrt(AA_[i]));
       L2 = nt::max(L2, NT(two * two * *r[i] * *r[i]));
     }
-    rho_ = nt::constant<NT>(1) / (L2 * nt::constant<NT>(1L << 40) * nt::constant<NT>(1L << 40));
+    rho_ = fine_ / L2;
   }
 
   std::optional<ActiveSetOptimum<NT>> solve(const Point3<NT>& X0) {
@@ -92,12 +101,12 @@ class ActiveSetProblem {
   }
 
  private:
-  // Newton's method from S, then corrections of S: a piece with a multiplier below -2^-80 leaves,
-  // a piece above phi by more than 2^-80 phi joins. The point with the least sigma over the
+  // Newton's method from S, then corrections of S: a piece with a multiplier below -fine leaves,
+  // a piece above phi by more than fine phi joins. The point with the least sigma over the
   // attempts is returned (the checks are exact: any point is a fair candidate).
   std::optional<ActiveSetOptimum<NT>> from(const Point3<NT>& X0, const NT& top, unsigned S, int& iterations) {
     std::optional<ActiveSetOptimum<NT>> best;
-    const NT tol = nt::constant<NT>(1) / (nt::constant<NT>(1L << 40) * nt::constant<NT>(1L << 40));
+    const NT& tol = fine_;
     for (int attempt = 0; attempt < 4; ++attempt) {
       std::optional<Newton> n = newton(X0, top, S);
       if (!n) break;
@@ -237,7 +246,7 @@ class ActiveSetProblem {
       ++s.iterations;
       // Pieces above phi join.
       unsigned joined = 0;
-      const NT above = s.phi + s.phi / (nt::constant<NT>(1L << 40) * nt::constant<NT>(1L << 40));
+      const NT above = s.phi + s.phi * fine_;
       for (unsigned k = 0; k < 4; ++k)
         if (!(s.S >> k & 1u) && nt::compare(value(k, s.X), above) == CGAL::LARGER) joined |= 1u << k;
       if (joined) {
@@ -250,17 +259,16 @@ class ActiveSetProblem {
       // Gone far from X0 (it starts near the optimum): a wrong active set.
       const Vec3<NT> moved = s.X - X0;
       if (nt::compare(dot(moved, moved), NT(nt::constant<NT>(4) * size * size)) == CGAL::LARGER) return std::nullopt;
-      // Stalled: a phi step below 2^-64 that no longer halves is the noise of an ill-conditioned
+      // Stalled: a phi step below 2^(-2b/3) that no longer halves is the noise of an ill-conditioned
       // system; more steps do not help (see below).
       const NT phi_step = abs_enclosure(step(3));
-      const NT small = nt::constant<NT>(1) / (nt::constant<NT>(1L << 32) * nt::constant<NT>(1L << 32));
-      if (nt::compare(phi_step, small) != CGAL::LARGER && nt::compare(NT(phi_step + phi_step), last_phi_step) != CGAL::SMALLER) return s;
+      if (nt::compare(phi_step, stall_) != CGAL::LARGER && nt::compare(NT(phi_step + phi_step), last_phi_step) != CGAL::SMALLER) return s;
       last_phi_step = phi_step;
     }
     // Not converged to epsilon: where the pieces meet almost tangentially the system is
     // ill-conditioned, and X and phi stall at the noise of NT amplified. A phi that stalled below
-    // 2^-64 is still worth checking (the checks are exact).
-    if (nt::compare(last_phi_step, NT(nt::constant<NT>(1) / (nt::constant<NT>(1L << 32) * nt::constant<NT>(1L << 32)))) != CGAL::LARGER) return s;
+    // 2^(-2b/3) is still worth checking (the checks are exact).
+    if (nt::compare(last_phi_step, stall_) != CGAL::LARGER) return s;
     return std::nullopt;
   }
 
@@ -269,6 +277,7 @@ class ActiveSetProblem {
   Point3<NT> m_[2];
   const Vec3<NT>* A_[2];
   NT AA_[2], c_[2], rho_;
+  NT fine_, stall_;
   int side_[2] = {1, 1};
 };
 
