@@ -113,6 +113,14 @@ void BM_certified_double(benchmark::State& state) {
   run(state, [](const Pair& p) { return certcyl::certified_cylinder_cylinder(p.a, p.b).answer; });
 }
 
+// Default options but the refine stage off (the query as it was before that stage): the stage
+// must cost random pairs nothing, side by side in one run.
+void BM_certified_double_refine_off(benchmark::State& state) {
+  certcyl::CylinderCylinderOptions o;
+  o.refine = false;
+  run(state, [o](const Pair& p) { return certcyl::certified_cylinder_cylinder(p.a, p.b, o).answer; });
+}
+
 // The query and its gap enclosure read at once (an answer of the quick path computes the
 // enclosure in gap(); the other stages record it during the query).
 void BM_certified_double_read_gap(benchmark::State& state) {
@@ -230,6 +238,7 @@ BENCHMARK(BM_certified_stages)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 BENCHMARK(BM_certified_rational)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_double)->Arg(0)->Arg(1);
+BENCHMARK(BM_certified_double_refine_off)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_double_read_gap)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_double_gap_in_query)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_double_no_gap)->Arg(0)->Arg(1);
