@@ -914,7 +914,7 @@ class CylinderCylinderSolver {
     const auto rational_to_q = [this](const Rational& q) { return qd_from_rational<QD>(q, world_exponent_); };
     const CylinderPair<QD> d = binary64_ ? CylinderPair<QD>::make(dbl_.c0.map(to_q), dbl_.c1.map(to_q))
                                          : CylinderPair<QD>::make(exact_cylinder(0).map(rational_to_q), exact_cylinder(1).map(rational_to_q));
-    ActiveSetProblem<QD> problem(d, QD(std::ldexp(1.0, epsilon_exponent)));
+    ActiveSetProblem<QD> problem(d, -epsilon_exponent);
     const std::optional<ActiveSetOptimum<QD>> o = problem.solve(X0);
     if (!o) return r;
     result_.counters.newton_steps += static_cast<std::uint32_t>(o->iterations);
@@ -986,7 +986,7 @@ class CylinderCylinderSolver {
     // ones): from its point, double-double needs a step or two.
     Point3<double> start = *optimum_point_;
     {
-      ActiveSetProblem<double> problem(dbl_, std::ldexp(1.0, -48));
+      ActiveSetProblem<double> problem(dbl_, 48);
       const std::optional<ActiveSetOptimum<double>> o = problem.solve(start);
       if (o && finite(o->point)) {
         result_.counters.newton_steps += static_cast<std::uint32_t>(o->iterations);

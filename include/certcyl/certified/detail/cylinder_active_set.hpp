@@ -49,15 +49,18 @@ struct ActiveSetOptimum {
 template <class NT>
 class ActiveSetProblem {
  public:
-  // epsilon: the relative step below which Newton's method has converged, 2^-b (2^-96 for
-  // dd_real, 2^-48 for double). The other thresholds scale with b: rho = 2^(-5b/6) / L^2 (2^-80
-  // for dd_real: the system's conditioning, 2^(5b/6), stays well inside the precision), the
-  // multiplier and joining tolerances 2^(-5b/6), a stalled phi step 2^(-2b/3).
-  ActiveSetProblem(const CylinderPair<NT>& d, const NT& epsilon) : d_(d), epsilon_(epsilon) {
-    int b = 0;
-    std::frexp(nt::to_double(epsilon), &b);
-    b = 1 - b;
-    const auto two_power = [](int e) { return nt::from_rational<NT>(Rational(std::ldexp(1.0, e))); };
+  // b: Newton's method has converged when its relative step is below epsilon = 2^-b (96 for
+  // dd_real, 48 for double, a little under the precision for Gmpfr). The other thresholds scale
+  // with b: rho = 2^(-5b/6) / L^2 (2^-80 for dd_real: the system's conditioning, 2^(5b/6),
+  // stays well inside the precision), the multiplier and joining tolerances 2^(-5b/6), a stalled
+  // phi step 2^(-2b/3).
+  ActiveSetProblem(const CylinderPair<NT>& d, int b) : d_(d) {
+    const auto two_power = [](long e) {
+      Rational r(1);
+      mpq_div_2exp(r.mpq(), r.mpq(), static_cast<mp_bitcnt_t>(-e));
+      return nt::from_rational<NT>(r);
+    };
+    epsilon_ = two_power(-b);
     fine_ = two_power(-(5 * b) / 6);
     stall_ = two_power(-(2 * b) / 3);
     const NT two = nt::constant<NT>(2);
