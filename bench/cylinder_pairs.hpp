@@ -1,11 +1,12 @@
 // bench/cylinder_pairs.hpp -- what the cylinder-pair benchmarks share: the random pairs'
-// distribution, and FCL's query on two cylinders (when FCL is installed).
+// distribution (the tests'), and FCL's query on two cylinders (when FCL is installed).
 #pragma once
 
 #include <cmath>
 #include <memory>
 #include <random>
 
+#include "../tests/test_cylinder_cylinder_cases.hpp"
 #include "certcyl/primitives.hpp"
 
 #ifdef CERTCYL_HAVE_FCL
@@ -17,20 +18,8 @@ namespace certcyl_bench {
 
 using D3 = certcyl::Vec3<double>;
 
-// Midpoint uniform in [-1, 1]^3, axis direction uniform, length in [0.2, 2], radius in
-// [0.05, 0.5] (binary64 values).
-inline certcyl::Cylinder<double> random_cylinder(std::mt19937_64& g) {
-  std::uniform_real_distribution<double> u(-1, 1), len(0.2, 2), rad(0.05, 0.5);
-  D3 w;
-  double n2;
-  do {
-    w = {u(g), u(g), u(g)};
-    n2 = dot(w, w);
-  } while (n2 < 0.01 || n2 > 1);
-  const double h = len(g) / (2 * std::sqrt(n2));
-  const D3 c{u(g), u(g), u(g)};
-  return {c - h * w, c + h * w, rad(g)};
-}
+// The random pairs' distribution (tests/test_cylinder_cylinder_cases.hpp).
+using cctest::random_cylinder;
 
 #ifdef CERTCYL_HAVE_FCL
 // Two fcl::Cylinderd placed like a and b (FCL's cylinders are centred, along z).

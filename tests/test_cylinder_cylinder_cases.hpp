@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <initializer_list>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,22 @@ using certcyl::Vec3;
 using Q = certcyl::Rational;
 
 inline Cylinder<Q> cyl(Point3<Q> p0, Point3<Q> p1, Q r) { return {p0, p1, r}; }
+
+// A random binary64 cylinder: midpoint uniform in [-1, 1]^3, axis direction uniform, length in
+// [0.2, 2], radius in [0.05, 0.5] (the random pairs of the tests and the benchmarks).
+inline Cylinder<double> random_cylinder(std::mt19937_64& g) {
+  using D3 = Vec3<double>;
+  std::uniform_real_distribution<double> u(-1, 1), len(0.2, 2), rad(0.05, 0.5);
+  D3 w;
+  double n2;
+  do {
+    w = {u(g), u(g), u(g)};
+    n2 = dot(w, w);
+  } while (n2 < 0.01 || n2 > 1);
+  const double h = len(g) / (2 * std::sqrt(n2));
+  const D3 c{u(g), u(g), u(g)};
+  return {c - h * w, c + h * w, rad(g)};
+}
 
 // A rational rotation from the integer quaternion (a, b, c, d): the usual matrix divided by
 // a^2 + b^2 + c^2 + d^2, exactly orthogonal.

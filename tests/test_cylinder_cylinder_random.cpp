@@ -30,19 +30,6 @@ struct Pair {
   Cylinder<double> a, b;
 };
 
-Cylinder<double> random_cylinder(std::mt19937_64& g) {
-  std::uniform_real_distribution<double> u(-1, 1), len(0.2, 2), rad(0.05, 0.5);
-  D3 w;
-  double n2;
-  do {
-    w = {u(g), u(g), u(g)};
-    n2 = dot(w, w);
-  } while (n2 < 0.01 || n2 > 1);
-  const double h = len(g) / (2 * std::sqrt(n2));
-  const D3 c{u(g), u(g), u(g)};
-  return {c - h * w, c + h * w, rad(g)};
-}
-
 Cylinder<Q> exact(const Cylinder<double>& c) {
   return c.map([](double x) { return Q(x); });
 }
