@@ -104,6 +104,22 @@ BOOST_AUTO_TEST_CASE(fuzz_needle_is_overlapping) {
   }
 }
 
+// Found by the pair fuzz harness run without a resource limit: a needle of subnormal radius
+// (about 2^-1026) whose end p1 = (0, 2, -1) lies on a's cap plane inside its disc, its axis
+// leaving a's slab: the common interior is a sliver of the needle's end disc (phi* - 1 about
+// 2e-311). The Gmpfr rounds up to 4,096 bits left it undecided; the end-disc candidates prove
+// it overlapping.
+BOOST_AUTO_TEST_CASE(needle_ending_on_a_cap_is_overlapping) {
+  const certcyl::Cylinder<double> a{{0, 2, 1}, {3, -1, 1}, 3};
+  const certcyl::Cylinder<double> b{{0, 0x1.e8p+6, 0}, {0, 2, -1}, 0x0.100010000b8bfp-1022};
+  const auto to_q = [](double x) { return Q(x); };
+  for (const bool swap : {false, true}) {
+    const auto r = swap ? certcyl::certified_cylinder_cylinder(b, a) : certcyl::certified_cylinder_cylinder(a, b);
+    BOOST_TEST(r.answer == Answer::overlapping);
+    BOOST_TEST(certcyl::recheck::check_cylinder_pair(swap ? b.map(to_q) : a.map(to_q), swap ? a.map(to_q) : b.map(to_q), r) == "");
+  }
+}
+
 // Rationals of 5,000 digits: every base contact type, turned by a rational rotation, translated
 // by 1/3, divided by 10^5000 + 1, exactly touching and moved 2^-20 either side. The Gmpfr rounds
 // take their precision from the binades the geometry spans, not from the digits (once, from the

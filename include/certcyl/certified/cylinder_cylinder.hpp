@@ -53,7 +53,8 @@
 //                    the axes, the exact rim-wall and rim-rim normals of
 //                    detail/cylinder_rim_contacts.hpp, a small-height rational reconstruction of
 //                    the optimiser's direction), each proved or rejected exactly.
-//   gmpfr            exact candidates first (the midpoints as witnesses, T and its parts
+//   gmpfr            exact candidates first (the midpoints and points of an end disc of one
+//                    cylinder whose end lies in the other as witnesses, T and its parts
 //                    orthogonal to the axes as directions, all in Gmpq), then the optimiser at
 //                    doubling precisions up to options.max_precision (by default set from the
 //                    input's span in bits); its direction
@@ -1106,6 +1107,46 @@ class CylinderCylinderSolver {
       if (!(D.x == 0 && D.y == 0 && D.z == 0) && exact_separates(D)) return true;
     for (const Cylinder<Rational>* c : {&e.c0, &e.c1})
       if (exact_overlaps(c->p0 + (c->p1 - c->p0) / Rational(2))) return true;
+    return end_disc_witness(0) || end_disc_witness(1);
+  }
+
+  // Points of an end disc of cylinder j, for an end E of j that lies in the closed cylinder i
+  // (a thin cylinder ending on or in the other, whose common interior can be a sliver of its end
+  // disc, far below any rounded optimiser's reach): X = E + s w - eta A (A = j's axis pointing
+  // out of j at E), with w the part orthogonal to A of a direction into i (A_i, -A_i, towards
+  // i's axis), s = r_j / (4 max |w_k|) so that |s w| < r_j / 2 (X is interior to j for every
+  // 0 < eta < 1), and eta = s max|w_k| / max|A_k| 2^-k for a few k. Each is checked exactly.
+  bool end_disc_witness(int j) {
+    const CylinderPair<Rational>& e = exact();
+    const Cylinder<Rational>& cj = j == 0 ? e.c0 : e.c1;
+    const Cylinder<Rational>& ci = j == 0 ? e.c1 : e.c0;
+    const Vec3<Rational>& Aj = j == 0 ? e.A0 : e.A1;
+    const Vec3<Rational>& Ai = j == 0 ? e.A1 : e.A0;
+    const Rational& AAj = j == 0 ? e.AA0 : e.AA1;
+    const auto largest = [](const Vec3<Rational>& v) {
+      Rational m = 0;
+      for (const Rational* q : {&v.x, &v.y, &v.z}) m = std::max(m, *q < 0 ? Rational(-*q) : *q);
+      return m;
+    };
+    const Rational a_max = largest(Aj);
+    const Point3<Rational> mi = ci.p0 + (ci.p1 - ci.p0) / Rational(2);
+    for (const bool far_end : {false, true}) {
+      const Point3<Rational>& E = far_end ? cj.p1 : cj.p0;
+      if (classify_point(E, ci) == Side::outside) continue;
+      const Vec3<Rational> out = far_end ? Aj : Vec3<Rational>(-Aj);  // out of j at E
+      const Vec3<Rational> towards_axis = (mi - E) - (dot(mi - E, Ai) / dot(Ai, Ai)) * Ai;
+      for (const Vec3<Rational>& d : {Ai, Vec3<Rational>(-Ai), towards_axis}) {
+        const Vec3<Rational> w = AAj * d - dot(d, Aj) * Aj;
+        const Rational w_max = largest(w);
+        if (w_max == 0) continue;
+        const Rational s = cj.radius / (4 * w_max);
+        Rational eta = s * w_max / a_max;
+        for (int k = 0; k < 3; ++k) {
+          eta = eta / 16;
+          if (exact_overlaps(E + s * w - eta * out)) return true;
+        }
+      }
+    }
     return false;
   }
 
