@@ -1110,6 +1110,20 @@ class CylinderCylinderSolver {
     return end_disc_witness(0) || end_disc_witness(1);
   }
 
+  // Cylinder j of the exact pair and the other one, i, with their axes and squared lengths.
+  struct Roles {
+    const Cylinder<Rational>& cj;
+    const Cylinder<Rational>& ci;
+    const Vec3<Rational>& Aj;
+    const Vec3<Rational>& Ai;
+    const Rational& AAj;
+    const Rational& AAi;
+  };
+  Roles roles(int j) {
+    const CylinderPair<Rational>& e = exact();
+    return j == 0 ? Roles{e.c0, e.c1, e.A0, e.A1, e.AA0, e.AA1} : Roles{e.c1, e.c0, e.A1, e.A0, e.AA1, e.AA0};
+  }
+
   // Points of an end disc of cylinder j, for an end E of j that lies in the closed cylinder i
   // (a thin cylinder ending on or in the other, whose common interior can be a sliver of its end
   // disc, far below any rounded optimiser's reach): X = E + s w - eta A (A = j's axis pointing
@@ -1117,12 +1131,7 @@ class CylinderCylinderSolver {
   // i's axis), s = r_j / (4 max |w_k|) so that |s w| < r_j / 2 (X is interior to j for every
   // 0 < eta < 1), and eta = s max|w_k| / max|A_k| 2^-k for a few k. Each is checked exactly.
   bool end_disc_witness(int j) {
-    const CylinderPair<Rational>& e = exact();
-    const Cylinder<Rational>& cj = j == 0 ? e.c0 : e.c1;
-    const Cylinder<Rational>& ci = j == 0 ? e.c1 : e.c0;
-    const Vec3<Rational>& Aj = j == 0 ? e.A0 : e.A1;
-    const Vec3<Rational>& Ai = j == 0 ? e.A1 : e.A0;
-    const Rational& AAj = j == 0 ? e.AA0 : e.AA1;
+    const auto [cj, ci, Aj, Ai, AAj, AAi] = roles(j);
     const auto largest = [](const Vec3<Rational>& v) {
       Rational m = 0;
       for (const Rational* q : {&v.x, &v.y, &v.z}) m = std::max(m, *q < 0 ? Rational(-*q) : *q);
@@ -1197,12 +1206,7 @@ class CylinderCylinderSolver {
   // condition); its midpoint, computed in Gmpfr and rounded to a rational, is checked exactly.
   // It finds the witness of a needle through the other cylinder.
   bool axis_witness(long precision, int j) {
-    const CylinderPair<Rational>& e = exact();
-    const Cylinder<Rational>& ci = j == 0 ? e.c1 : e.c0;
-    const Cylinder<Rational>& cj = j == 0 ? e.c0 : e.c1;
-    const Vec3<Rational>& Ai = j == 0 ? e.A1 : e.A0;
-    const Vec3<Rational>& Aj = j == 0 ? e.A0 : e.A1;
-    const Rational& AAi = j == 0 ? e.AA1 : e.AA0;
+    const auto [cj, ci, Aj, Ai, AAj, AAi] = roles(j);
     const Vec3<Rational> w = cj.p0 - ci.p0, c = cross(w, Ai), g = cross(Aj, Ai);
     Rational u;
     {
