@@ -43,12 +43,14 @@
 //                    and the best direction, then the best point, is checked.
 //   optimiser        smoothed Newton in double on the plane D.Delta = 1 (detail/cylinder_optimiser.hpp),
 //                    giving a direction and a dual point, checked likewise.
-//   refine           Newton's method in double-double (QD's dd_real) on the optimality conditions
-//                    of min sigma(X), from the optimiser's point, with the active caps, walls
-//                    and rims read off the gauges (detail/cylinder_active_set.hpp): a point and
-//                    a direction accurate to about 2^-100, converted exactly to rationals and
-//                    checked in Gmpq; it decides pairs 2^-50 .. 2^-95 from touching, and its
-//                    direction leads the touching candidates.
+//   refine           Newton's method on the optimality conditions of min sigma(X), in double
+//                    then double-double (QD's dd_real), from the optimiser's point, with the
+//                    active caps, walls and rims read off the gauges
+//                    (detail/cylinder_active_set.hpp); where it stalls, the optimiser's
+//                    smoothing path in double-double. A point and a direction accurate to about
+//                    2^-100, checked exactly (Mpzf for binary64 input, Gmpq otherwise); it
+//                    decides pairs 2^-50 .. 2^-95 from touching, and its direction leads the
+//                    touching candidates.
 //   touching_exact   rational candidate normals (A0, A1, A0 x A1, the parts of Delta orthogonal to
 //                    the axes, the exact rim-wall and rim-rim normals of
 //                    detail/cylinder_rim_contacts.hpp, a small-height rational reconstruction of
@@ -897,36 +899,43 @@ class CylinderCylinderSolver {
   }
 
   // ---- stage refine -------------------------------------------------------------------------------------
-  // What one precision of the refine stage found: a decision, or the point to go on from.
-  template <class QD>
+  // What the Newton iteration of the refine stage found.
   struct Refined {
     bool decided = false;
     bool near_touching = false;  // sigma(X) within the precision's noise of 1
-    std::optional<Point3<QD>> point;
   };
+
+  // The world input in QD: exact for binary64 input, correctly rounded otherwise.
+  template <class QD>
+  CylinderPair<QD> world_pair() {
+    const auto to_q = [](double x) { return QD(x); };
+    const auto rational_to_q = [this](const Rational& q) { return qd_from_rational<QD>(q, world_exponent_); };
+    return binary64_ ? CylinderPair<QD>::make(dbl_.c0.map(to_q), dbl_.c1.map(to_q))
+                     : CylinderPair<QD>::make(exact_cylinder(0).map(rational_to_q), exact_cylinder(1).map(rational_to_q));
+  }
+  template <class QD>
+  static bool finite_q(const QD& x) {
+    for (double t : x.x)
+      if (!std::isfinite(t)) return false;
+    return true;
+  }
+  template <class QD>
+  static bool finite_q(const Vec3<QD>& v) {
+    return finite_q(v.x) && finite_q(v.y) && finite_q(v.z);
+  }
 
   // Newton's method on the optimality conditions in QD (dd_real) from the world
   // point X0; its point or its direction checked exactly.
   template <class QD>
-  Refined<QD> refine_in(const Point3<QD>& X0, int epsilon_exponent, int touching_exponent) {
-    Refined<QD> r;
-    const auto to_q = [](double x) { return QD(x); };
-    // The world input in QD: exact for binary64 input, correctly rounded otherwise.
-    const auto rational_to_q = [this](const Rational& q) { return qd_from_rational<QD>(q, world_exponent_); };
-    const CylinderPair<QD> d = binary64_ ? CylinderPair<QD>::make(dbl_.c0.map(to_q), dbl_.c1.map(to_q))
-                                         : CylinderPair<QD>::make(exact_cylinder(0).map(rational_to_q), exact_cylinder(1).map(rational_to_q));
+  Refined refine_in(const Point3<QD>& X0, int epsilon_exponent, int touching_exponent) {
+    Refined r;
+    const CylinderPair<QD> d = world_pair<QD>();
     ActiveSetProblem<QD> problem(d, -epsilon_exponent);
     const std::optional<ActiveSetOptimum<QD>> o = problem.solve(X0);
     if (!o) return r;
     result_.counters.newton_steps += static_cast<std::uint32_t>(o->iterations);
-    const auto finite_q = [](const QD& x) {
-      for (double t : x.x)
-        if (!std::isfinite(t)) return false;
-      return true;
-    };
-    if (!finite_q(o->value) || !finite_q(o->point.x) || !finite_q(o->point.y) || !finite_q(o->point.z)) return r;
-    r.point = o->point;
-    if (finite_q(o->direction.x) && finite_q(o->direction.y) && finite_q(o->direction.z)) {
+    if (!finite_q(o->value) || !finite_q(o->point)) return r;
+    if (finite_q(o->direction)) {
       Vec3<Rational> D = o->direction.map([](const QD& x) { return nt::to_rational(x); });
       if (!(D.x == 0 && D.y == 0 && D.z == 0)) refined_ = std::move(D);
     }
@@ -953,26 +962,18 @@ class CylinderCylinderSolver {
   // pieces meet; its direction and point checked exactly.
   template <class QD>
   bool smoothed_in(int mu, int stop) {
-    const auto to_q = [](double x) { return QD(x); };
-    const auto rational_to_q = [this](const Rational& q) { return qd_from_rational<QD>(q, world_exponent_); };
-    const CylinderPair<QD> d = binary64_ ? CylinderPair<QD>::make(dbl_.c0.map(to_q), dbl_.c1.map(to_q))
-                                         : CylinderPair<QD>::make(exact_cylinder(0).map(rational_to_q), exact_cylinder(1).map(rational_to_q));
+    const CylinderPair<QD> d = world_pair<QD>();
     PlaneProblem<QD> problem(d, mu);
     const PlaneMinimum<QD> m = problem.minimise(true, stop);
     result_.counters.newton_steps += static_cast<std::uint32_t>(m.iterations);
-    const auto finite_q = [](const QD& x) {
-      for (double t : x.x)
-        if (!std::isfinite(t)) return false;
-      return true;
-    };
-    if (finite_q(m.value) && m.value < QD(1) && finite_q(m.direction.x) && finite_q(m.direction.y) && finite_q(m.direction.z)) {
+    if (finite_q(m.value) && m.value < QD(1) && finite_q(m.direction)) {
       Vec3<Rational> D = m.direction.map([](const QD& x) { return nt::to_rational(x); });
       if (!(D.x == 0 && D.y == 0 && D.z == 0)) {
         refined_ = std::move(D);
         if (world_exact_ ? dyadic_separates(m.direction) : exact_separates(*refined_)) return true;
       }
     }
-    if (finite_q(m.point.x) && finite_q(m.point.y) && finite_q(m.point.z))
+    if (finite_q(m.point))
       return world_exact_ ? dyadic_overlaps(m.point) : exact_overlaps(world_to_input(m.point));
     return false;
   }
@@ -994,7 +995,7 @@ class CylinderCylinderSolver {
         start = o->point;
       }
     }
-    const Refined<dd_real> dd = refine_in<dd_real>(start.map([](double x) { return dd_real(x); }), -96, -98);
+    const Refined dd = refine_in<dd_real>(start.map([](double x) { return dd_real(x); }), -96, -98);
     if (dd.decided) return true;
     if (dd.near_touching) return pass();
     if (smoothed_in<dd_real>(96, 60)) return true;
