@@ -1,0 +1,163 @@
+// What the stages of the study share (study*.cpp): the rows of instances.csv and their CSV
+// form, the planned instances, the methods run quietly or timed, a thread pool and a progress
+// bar, and each stage's entry point. Internal to the command; the stages, in order:
+//   study_plan.cpp       the configuration (size presets, --config, --shard) and the instances
+//   study_instances.cpp  every method on every instance: timing, outcomes, instances.csv, inputs.csv
+//   study_maps.cpp       the failure maps (failure_maps/)
+//   study_hunt.cpp       the worst-input hunt (hunt.csv)
+//   study_machine.cpp    the build and machine facts (machine.json)
+//   study_report.cpp     the summary tables from the CSV files, and the figures
+//   study_merge.cpp      the shards checked and merged
+//   study.cpp            `certcyl study`: the stages in order
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <exception>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <mutex>
+#include <ostream>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "certcyl/study/instance.hpp"
+#include "certcyl/study/methods.hpp"
+#include "study.hpp"
+
+namespace certcyl::cli::detail {
+
+namespace fs = std::filesystem;
+
+// ---- Rows and their CSV form (study_rows.cpp) --------------------------------------------------
+
+// One row of instances.csv: one method on one instance.
+struct Row {
+  std::string family, query;
+  std::uint64_t instance = 0;
+  long long k = 0;
+  std::string expected, method, base, nt, kind, answer, certified, outcome;
+  double gap_lo = 0, gap_hi = 0, ns = 0;
+  double t_error = std::numeric_limits<double>::quiet_NaN();
+};
+
+extern const char* const kRowHeader;     // instances.csv
+extern const char* const kInputsHeader;  // inputs.csv
+extern const char* const kHuntHeader;    // hunt.csv
+
+// A double as %.17g (round trip), "" for NaN, "inf" and "-inf"; parse_num is its inverse.
+std::string num(double d);
+double parse_num(const std::string& s);
+void write_row(std::ostream& os, const Row& r);
+// Throws std::runtime_error on a line that is not a row of instances.csv.
+Row parse_row(const std::string& line);
+std::vector<std::string> split(const std::string& line, char sep);
+// The coordinates as hexfloats separated by spaces.
+std::string x_hex(const std::vector<double>& x);
+
+// ---- Configuration and plan (study_plan.cpp) ---------------------------------------------------
+
+// The size preset, then the configuration file, fill the options the command line left unset.
+void apply_size(StudyOptions& o);
+void apply_config(StudyOptions& o);
+
+std::uint64_t mix(std::uint64_t h, std::uint64_t v);
+std::uint64_t hash_string(const std::string& s);
+// True when the filter is empty or some entry is a substring of name.
+bool keep_name(const std::vector<std::string>& filter, const std::string& name);
+
+struct Planned {
+  study::Instance inst;
+  std::size_t index_in_family = 0;
+  long long k = 0;
+};
+
+// This shard's instances of the configuration, in a fixed order; each depends only on the seed,
+// its family, its query and its index, so any shard builds the same ones.
+std::vector<Planned> plan_instances(const StudyOptions& o);
+
+// ---- Running methods (study_instances.cpp) -----------------------------------------------------
+
+// The method's output (error set when it throws); serial methods one at a time.
+study::MethodOutput run_quiet(const study::Method& m, const std::vector<double>& x);
+
+// Certifies every planned instance and runs every applicable method on it; the rows of each
+// instance in registry order.
+std::vector<std::vector<Row>> run_instances(const StudyOptions& o, const study::Registry& registry, std::vector<Planned>& plan);
+
+// instances.csv and inputs.csv in dir.
+void write_instances(const fs::path& dir, const std::vector<Planned>& plan, const std::vector<std::vector<Row>>& rows);
+
+// ---- The other stages ------------------------------------------------------------------------
+
+// failure_maps/ in dir (study_maps.cpp).
+void run_failure_maps(const StudyOptions& o, const study::Registry& registry, const fs::path& dir);
+// hunt.csv in dir: this shard's share of the methods (study_hunt.cpp).
+void run_hunt(const StudyOptions& o, const study::Registry& registry, const fs::path& dir);
+// The contents of machine.json (study_machine.cpp).
+nlohmann::ordered_json machine_json(const StudyOptions& o, const std::vector<std::string>& peers);
+// summary.txt, summary.csv and summary_families.csv from dir's instances.csv and inputs.csv;
+// returns the table of summary.txt (study_report.cpp).
+std::string write_summary(const fs::path& dir);
+// Runs experiments/plot_study.py on dir when wanted and possible, else says how (study_report.cpp).
+void run_plots(const fs::path& dir, bool want, std::ostream& out);
+
+// ---- Threads and progress --------------------------------------------------------------------
+
+// A progress bar on standard error, redrawn at most every 200 ms.
+class Progress {
+ public:
+  Progress(bool on, std::string label, std::size_t total) : on_(on), label_(std::move(label)), total_(total) {}
+  void tick(std::size_t n = 1) {
+    const std::size_t d = done_ += n;
+    if (!on_) return;
+    const auto now = std::chrono::steady_clock::now();
+    std::lock_guard lock(mutex_);
+    if (d < total_ && now - last_ < std::chrono::milliseconds(200)) return;
+    last_ = now;
+    const int width = 30, filled = total_ ? static_cast<int>(width * d / total_) : width;
+    std::cerr << '\r' << std::left << std::setw(16) << label_ << " [" << std::string(filled, '#') << std::string(width - filled, ' ')
+              << "] " << d << '/' << total_ << std::flush;
+    if (d >= total_) std::cerr << '\n';
+  }
+
+ private:
+  bool on_;
+  std::string label_;
+  std::size_t total_;
+  std::atomic<std::size_t> done_{0};
+  std::mutex mutex_;
+  std::chrono::steady_clock::time_point last_{};
+};
+
+// Runs body(i) for i in [0, n) on `threads` threads.
+template <class F>
+void parallel_for(std::size_t n, unsigned threads, F&& body) {
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto worker = [&] {
+    try {
+      for (std::size_t i; (i = next++) < n;) body(i);
+    } catch (...) {
+      std::lock_guard lock(failure_mutex);
+      failure = std::current_exception();
+      next = n;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < std::max(1u, threads); ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+}  // namespace certcyl::cli::detail

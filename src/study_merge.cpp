@@ -1,0 +1,145 @@
+// `certcyl merge`: the shards of a study checked against each other and merged into the outputs
+// of an unsharded run of the same configuration.
+#include <fstream>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+#include "study_internal.hpp"
+
+namespace certcyl::cli {
+using namespace detail;
+
+namespace {
+
+// The shards of a study folder, checked: each shard-* folder holds a machine.json whose
+// "shard" is i/n (the folder's name is not trusted: a copied folder is a duplicate); every
+// shard shares one n, one configuration (every option but the shard, the thread count and the
+// name) and one build (commit, compiler, flags, CGAL, peer libraries); each of
+// 0..n-1 is there exactly once. Throws std::runtime_error naming what differs or is missing.
+std::vector<fs::path> checked_shards(const fs::path& dir, std::vector<fs::path> shards, nlohmann::json& machine) {
+  std::sort(shards.begin(), shards.end());
+  struct Seen {
+    fs::path path;
+    nlohmann::json machine;
+  };
+  std::vector<Seen> seen;
+  for (const fs::path& s : shards) {
+    std::ifstream in(s / "machine.json");
+    if (!in) throw std::runtime_error("merge: " + s.string() + ": no machine.json (an unfinished or foreign shard?)");
+    Seen entry{s, nlohmann::json::parse(in, nullptr, false)};
+    if (entry.machine.is_discarded() || !entry.machine.contains("options") || !entry.machine["options"].contains("shard"))
+      throw std::runtime_error("merge: " + (s / "machine.json").string() + ": not a study's machine.json");
+    seen.push_back(std::move(entry));
+  }
+  const Seen& first = seen.front();
+  auto where = [](const Seen& e) { return e.path.filename().string(); };
+  int count = -1;
+  std::map<int, std::vector<std::string>> by_index;
+  for (const Seen& e : seen) {
+    int index = 0, n = 0;
+    const std::string shard = e.machine["options"]["shard"].get<std::string>();
+    try {
+      parse_shard(shard, index, n);
+    } catch (const std::exception&) {
+      throw std::runtime_error("merge: " + where(e) + ": machine.json has shard '" + shard + "'");
+    }
+    if (count >= 0 && n != count)
+      throw std::runtime_error("merge: shards of different counts: " + where(first) + " is one of " + std::to_string(count) + ", " + where(e) +
+                               " one of " + std::to_string(n));
+    count = n;
+    by_index[index].push_back(where(e));
+    // The configuration and the build must be the same.
+    for (const char* key : {"commit", "compiler", "flags", "cgal", "peers"})
+      if (e.machine.value(key, nlohmann::json()) != first.machine.value(key, nlohmann::json()))
+        throw std::runtime_error(std::string("merge: shards from different builds: ") + key + " is " + first.machine.value(key, nlohmann::json()).dump() +
+                                 " in " + where(first) + " but " + e.machine.value(key, nlohmann::json()).dump() + " in " + where(e));
+    const nlohmann::json& a = first.machine["options"];
+    const nlohmann::json& b = e.machine["options"];
+    std::set<std::string> keys;
+    for (const auto& [k, v] : a.items()) keys.insert(k);
+    for (const auto& [k, v] : b.items()) keys.insert(k);
+    for (const std::string& k : keys) {
+      if (k == "shard" || k == "threads" || k == "name") continue;
+      const nlohmann::json va = a.value(k, nlohmann::json()), vb = b.value(k, nlohmann::json());
+      if (va != vb)
+        throw std::runtime_error("merge: shards of different configurations: " + k + " is " + va.dump() + " in " + where(first) + " but " +
+                                 vb.dump() + " in " + where(e));
+    }
+  }
+  std::string missing, duplicate;
+  for (int i = 0; i < count; ++i) {
+    const auto it = by_index.find(i);
+    if (it == by_index.end()) missing += (missing.empty() ? "" : ", ") + std::to_string(i);
+  }
+  for (const auto& [i, folders] : by_index) {
+    if (folders.size() < 2) continue;
+    duplicate += std::string(duplicate.empty() ? "" : "; ") + std::to_string(i) + " (";
+    for (std::size_t k = 0; k < folders.size(); ++k) duplicate += (k ? ", " : "") + folders[k];
+    duplicate += ")";
+  }
+  if (!missing.empty())
+    throw std::runtime_error("merge: missing shard(s) " + missing + " of " + std::to_string(count) + " in " + dir.string());
+  if (!duplicate.empty()) throw std::runtime_error("merge: duplicate shard(s) " + duplicate + " in " + dir.string());
+  machine = first.machine;
+  return shards;
+}
+
+}  // namespace
+
+int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
+  const fs::path dir(dir_name);
+  std::vector<fs::path> shards;
+  if (fs::is_directory(dir))
+    for (const auto& e : fs::directory_iterator(dir))
+      if (e.is_directory() && e.path().filename().string().rfind("shard-", 0) == 0) shards.push_back(e.path());
+  if (shards.empty()) {
+    out << "merge: no shard-*-of-* folders in " << dir_name << '\n';
+    return 1;
+  }
+  nlohmann::json machine;
+  shards = checked_shards(dir, std::move(shards), machine);
+  std::sort(shards.begin(), shards.end());
+  // Instances and inputs in instance order; hunting lines in method order; maps from shard 0.
+  std::vector<std::pair<std::uint64_t, std::string>> rows, inputs;
+  std::vector<std::string> hunt;
+  for (const fs::path& s : shards) {
+    auto read = [&](const char* file, std::vector<std::pair<std::uint64_t, std::string>>& into, std::size_t id_field) {
+      std::ifstream in(s / file);
+      if (!in) throw std::runtime_error("merge: missing " + (s / file).string());
+      std::string line;
+      std::getline(in, line);
+      while (std::getline(in, line)) into.emplace_back(std::stoull(split(line, ',')[id_field]), line);
+    };
+    read("instances.csv", rows, 2);
+    read("inputs.csv", inputs, 0);
+    std::ifstream h(s / "hunt.csv");
+    std::string line;
+    std::getline(h, line);
+    while (std::getline(h, line)) hunt.push_back(line);
+    if (fs::exists(s / "failure_maps")) fs::copy(s / "failure_maps", dir / "failure_maps", fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+  }
+  std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::stable_sort(inputs.begin(), inputs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::sort(hunt.begin(), hunt.end());
+  {
+    std::ofstream csv(dir / "instances.csv");
+    csv << kRowHeader << '\n';
+    for (const auto& r : rows) csv << r.second << '\n';
+    std::ofstream in(dir / "inputs.csv");
+    in << kInputsHeader << '\n';
+    for (const auto& r : inputs) in << r.second << '\n';
+    std::ofstream h(dir / "hunt.csv");
+    h << kHuntHeader << '\n';
+    for (const auto& l : hunt) h << l << '\n';
+    machine["merged_shards"] = shards.size();
+    machine["options"]["shard"] = "merged";
+    std::ofstream(dir / "machine.json") << machine.dump(2) << '\n';
+  }
+  out << write_summary(dir);
+  out << "merged " << shards.size() << " shards into " << dir.string() << '\n';
+  run_plots(dir, plots, out);
+  return 0;
+}
+
+}  // namespace certcyl::cli

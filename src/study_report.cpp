@@ -1,0 +1,146 @@
+// The report of a results folder, read from its CSV files only (so a merge reports the same as
+// an unsharded run): the disagreement tables per method, per query and per family
+// (summary.txt, summary.csv, summary_families.csv), and the figures (experiments/plot_study.py).
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <tuple>
+
+#include "study_internal.hpp"
+
+#ifndef CERTCYL_SOURCE_DIR
+#define CERTCYL_SOURCE_DIR "."
+#endif
+
+namespace certcyl::cli::detail {
+using namespace certcyl::study;
+
+namespace {
+
+struct Tally {
+  std::string kind;
+  std::set<std::string> queries;
+  long n = 0, fp = 0, fn = 0, cls = 0, undecided = 0, errors = 0;
+  std::vector<double> ns;
+  double rate() const {
+    const long decided = n - undecided - errors;
+    return decided > 0 ? static_cast<double>(fp + fn) / static_cast<double>(decided) : 0.0;
+  }
+  double median_ns() {
+    if (ns.empty()) return 0;
+    std::nth_element(ns.begin(), ns.begin() + static_cast<long>(ns.size() / 2), ns.end());
+    return ns[ns.size() / 2];
+  }
+  void add(const Row& r) {
+    kind = r.kind;
+    queries.insert(r.query);
+    if (r.outcome == "uncertified") return;
+    ++n;
+    fp += r.outcome == "false_positive";
+    fn += r.outcome == "false_negative";
+    cls += r.outcome == "class_mismatch";
+    undecided += r.outcome == "undecided";
+    errors += r.outcome == "error";
+    ns.push_back(r.ns);
+  }
+};
+
+struct Checks {
+  long instances = 0, uncertified = 0, gap_sign_mismatch = 0, construction_mismatch = 0;
+};
+
+std::string summary_table(std::map<std::string, Tally>& by_method, const Checks& c) {
+  std::ostringstream os;
+  os << std::left << std::setw(46) << "method" << ' ' << std::setw(16) << "kind" << std::right << std::setw(4) << "q" << std::setw(8) << "n"
+     << std::setw(7) << "FP" << std::setw(7) << "FN" << std::setw(7) << "class" << std::setw(7) << "undec" << std::setw(6) << "err"
+     << std::setw(10) << "rate" << std::setw(11) << "ns(med)" << '\n';
+  os << std::string(130, '-') << '\n';
+  for (auto& [name, t] : by_method) {
+    char rate[32];
+    std::snprintf(rate, sizeof rate, "%.2e", t.rate());
+    os << std::left << std::setw(46) << name << ' ' << std::setw(16) << t.kind << std::right << std::setw(4) << t.queries.size() << std::setw(8)
+       << t.n << std::setw(7) << t.fp << std::setw(7) << t.fn << std::setw(7) << t.cls << std::setw(7) << t.undecided << std::setw(6)
+       << t.errors << std::setw(10) << rate << std::setw(11) << std::fixed << std::setprecision(0) << t.median_ns() << '\n';
+    os.unsetf(std::ios::fixed);
+  }
+  os << "rate = (FP + FN) / decided answers; class = touching/overlapping confused; q = queries covered.\n";
+  os << "checks: " << c.instances << " instances, " << c.uncertified << " left undecided by the certified query, "
+     << c.gap_sign_mismatch << " gap-sign mismatches, " << c.construction_mismatch
+     << " disagreements between construction and certified answer.\n";
+  return os.str();
+}
+
+Checks checks_from_inputs(const fs::path& inputs_csv) {
+  Checks c;
+  std::ifstream in(inputs_csv);
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) {
+    const auto f = split(line, ',');
+    if (f.size() < 10) continue;
+    ++c.instances;
+    const std::string& expected = f[4];
+    const std::string& cert = f[5];
+    c.uncertified += cert == "undecided";
+    c.gap_sign_mismatch += f[8] != "1";
+    c.construction_mismatch += expected != "unknown" && cert != "undecided" && expected != cert;
+  }
+  return c;
+}
+
+}  // namespace
+
+// Summary from instances.csv and inputs.csv (so a merge gives the same tables).
+std::string write_summary(const fs::path& dir) {
+  std::map<std::string, Tally> by_method;
+  std::map<std::tuple<std::string, std::string>, Tally> by_method_query;
+  std::map<std::tuple<std::string, std::string, std::string>, Tally> by_family;
+  {
+    std::ifstream in(dir / "instances.csv");
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line)) {
+      const Row r = parse_row(line);
+      by_method[r.method].add(r);
+      by_method_query[{r.query, r.method}].add(r);
+      by_family[{r.query, r.family, r.method}].add(r);
+    }
+  }
+  const Checks c = checks_from_inputs(dir / "inputs.csv");
+  const std::string table = summary_table(by_method, c);
+  std::ofstream(dir / "summary.txt") << table;
+  std::ofstream csv(dir / "summary.csv");
+  csv << "query,method,kind,n,false_positive,false_negative,class_mismatch,undecided,error,disagreement_rate,median_ns\n";
+  for (auto& [key, t] : by_method_query)
+    csv << std::get<0>(key) << ',' << std::get<1>(key) << ',' << t.kind << ',' << t.n << ',' << t.fp << ',' << t.fn << ',' << t.cls << ','
+        << t.undecided << ',' << t.errors << ',' << num(t.rate()) << ',' << num(t.median_ns()) << '\n';
+  std::ofstream fam(dir / "summary_families.csv");
+  fam << "query,family,method,kind,n,false_positive,false_negative,class_mismatch,undecided,error,disagreement_rate\n";
+  for (auto& [key, t] : by_family)
+    fam << std::get<0>(key) << ',' << std::get<1>(key) << ',' << std::get<2>(key) << ',' << t.kind << ',' << t.n << ',' << t.fp << ','
+        << t.fn << ',' << t.cls << ',' << t.undecided << ',' << t.errors << ',' << num(t.rate()) << '\n';
+  return table;
+}
+
+void run_plots(const fs::path& dir, bool want, std::ostream& out) {
+  const std::string script = std::string(CERTCYL_SOURCE_DIR) + "/experiments/plot_study.py";
+  const std::string cmd = "/usr/bin/python3 '" + script + "' '" + dir.string() + "'";
+  if (!want) {
+    out << "figures: run  " << cmd << '\n';
+    return;
+  }
+  const bool have = fs::exists(script) && std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") == 0;
+  if (!have) {
+    out << "figures: /usr/bin/python3 with matplotlib (Debian python3-matplotlib) not found; when it is installed run\n  " << cmd << '\n';
+    return;
+  }
+  if (std::system((cmd + " >/dev/null").c_str()) != 0)
+    out << "figures: the plotting script failed; run it by hand to see why:\n  " << cmd << '\n';
+  else
+    out << "figures: " << (dir / "figures").string() << '\n';
+}
+
+}  // namespace certcyl::cli::detail
