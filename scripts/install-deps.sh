@@ -4,19 +4,21 @@
 #   scripts/install-deps.sh --study    also the peer libraries and plotting (experiments)
 #   scripts/install-deps.sh --paper    also LaTeX (the paper)
 #   scripts/install-deps.sh --fuzz     also clang and its sanitizer/libFuzzer runtimes (scripts/fuzz.sh)
+#   scripts/install-deps.sh --slurm    also Slurm and MUNGE (the batch scripts' test on a private local cluster)
 set -euo pipefail
 
 packages=(
   build-essential cmake ccache pkg-config
   libcgal-dev libgmp-dev libmpfr-dev libmpfi-dev libeigen3-dev libqd-dev
-  libboost-test-dev nlohmann-json3-dev libcli11-dev libbenchmark-dev
+  libboost-test-dev nlohmann-json3-dev libcli11-dev libbenchmark-dev libssl-dev
 )
 for arg in "$@"; do
   case "$arg" in
     --study) packages+=(libfcl-dev libbullet-dev libode-dev python3-matplotlib python3-numpy) ;;
     --paper) packages+=(texlive-latex-recommended texlive-latex-extra latexmk poppler-utils) ;;
     --fuzz) packages+=(clang libclang-rt-14-dev) ;;
-    *) echo "install-deps.sh: unknown option '$arg' (expected --study, --paper or --fuzz)" >&2; exit 2 ;;
+    --slurm) packages+=(slurm-wlm munge) ;;
+    *) echo "install-deps.sh: unknown option '$arg' (expected --study, --paper, --fuzz or --slurm)" >&2; exit 2 ;;
   esac
 done
 

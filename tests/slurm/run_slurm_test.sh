@@ -1,0 +1,142 @@
+#!/usr/bin/env bash
+# The batch scripts of experiments/slurm/ on a real Slurm: a private single-node cluster on this
+# machine (scripts/slurm-local.sh, as root), stopped on exit whatever happens.
+#   tests/slurm/run_slurm_test.sh CERTCYL CROSSCHECK SOURCE_DIR WORK_DIR
+# 1. A tiny study as an array job of 4 shards, task 3 killed (SIGKILL) as it starts. The merge
+#    job (afterok) must not run, and `certcyl merge` must refuse, naming shard 3. Resubmitting index 3 alone with its own merge job completes
+#    the study, and the merged CSV files must equal an unsharded run of the same configuration,
+#    row for row, but for the timing columns (tests/slurm/compare_study.sh).
+# 2. The cross-check, every query at 120 cases, as 3 array tasks and the merge job: the summed
+#    counts must equal an unsharded run's, line for line. Then the same submitted held and task
+#    2 cancelled before it runs: the merge job (afterany) must fail, naming the missing shard.
+# Every wait has a time limit; exit 77 (skipped) when not root or Slurm is not installed.
+set -euo pipefail
+[ $# -eq 4 ] || { echo "usage: run_slurm_test.sh CERTCYL CROSSCHECK SOURCE_DIR WORK_DIR" >&2; exit 2; }
+certcyl=$(realpath "$1")
+crosscheck=$(realpath "$2")
+source_dir=$(realpath "$3")
+work=$(realpath -m "$4")
+submit=$source_dir/experiments/slurm/submit.sh
+
+if [ "$(id -u)" -ne 0 ]; then
+  echo "slurm test: skipped (the private cluster's daemons run as root)"
+  exit 77
+fi
+for program in munged slurmctld slurmd sbatch; do
+  command -v "$program" > /dev/null || { echo "slurm test: skipped ($program not installed: scripts/install-deps.sh --slurm)"; exit 77; }
+done
+
+cluster=$work/cluster
+stop_cluster() { bash "$source_dir/scripts/slurm-local.sh" stop "$cluster" || true; }
+stop_cluster  # daemons left by a run that was killed before its trap ran
+rm -rf "$work"
+mkdir -p "$work"
+trap stop_cluster EXIT
+trap 'exit 1' INT TERM
+# Every wait ends by this deadline, well before the test's 900 s limit in ctest.
+deadline=$((SECONDS + 720))
+remaining() { echo $((deadline - SECONDS > 1 ? deadline - SECONDS : 1)); }
+timeout 90 bash "$source_dir/scripts/slurm-local.sh" start "$cluster"
+export SLURM_CONF=$cluster/slurm.conf
+
+fail() {
+  echo "slurm test: FAILED: $*" >&2
+  local log
+  for log in "$cluster"/log/slurm*.log; do echo "--- $log" >&2; tail -n 20 "$log" >&2; done
+  exit 1
+}
+
+# The states of a job's records (one per array task), e.g. "COMPLETED COMPLETED CANCELLED".
+job_states() {
+  scontrol -o show job "$1" 2> /dev/null | sed -n 's/.*JobState=\([A-Z_]*\).*/\1/p' | tr '\n' ' ' | sed 's/ $//'
+}
+# Waits until no record of the job is pending, running or completing; fails after $2 seconds
+# or at the deadline.
+wait_job() {
+  local id=$1 limit=$2 states
+  [ "$limit" -le "$(remaining)" ] || limit=$(remaining)
+  for _ in $(seq $((limit * 2))); do
+    states=$(job_states "$id")
+    if [ -n "$states" ] && ! [[ " $states " =~ \ (PENDING|RUNNING|CONFIGURING|COMPLETING|SUSPENDED|REQUEUED)\  ]]; then
+      echo "$states"
+      return
+    fi
+    sleep 0.5
+  done
+  squeue >&2 || true
+  scontrol show job "$id" >&2 || true
+  fail "job $id not finished within $limit s (states: $states)"
+}
+# Runs submit.sh with the given settings; sets array_id and merge_id.
+submit() {
+  local ids
+  ids=$(env "$@" timeout 60 bash "$submit" "$kind" "${sbatch_options[@]}") || fail "submit.sh $kind failed"
+  read -r array_id merge_id <<< "$ids"
+  [[ "$array_id" =~ ^[0-9]+$ && "$merge_id" =~ ^[0-9]+$ ]] || fail "submit.sh printed '$ids', not two job ids"
+}
+
+# --- 1. The study: a lost shard, its re-run, the merge against an unsharded run.
+results=$work/results
+timeout "$(remaining)" "$certcyl" study --size tiny --threads 2 --out "$results" --name unsharded --no-plots --no-progress > "$work/unsharded.txt" ||
+  fail "the unsharded study failed"
+# certcyl, but the task of shard 3 of 4 is killed (SIGKILL) as it starts while the marker exists.
+killed=$work/kill-shard-3
+wrapper=$work/certcyl-shard-3-killed
+printf '#!/usr/bin/env bash\n[ -e %q ] && [[ " $* " == *" --shard 3/4 "* ]] && kill -KILL $$\nexec %q "$@"\n' "$killed" "$certcyl" > "$wrapper"
+chmod +x "$wrapper"
+touch "$killed"
+study_settings=(CERTCYL_BIN="$wrapper" CERTCYL_OUT="$results" CERTCYL_NAME=sharded CERTCYL_SIZE=tiny CERTCYL_SHARDS=4 CERTCYL_PLOTS=0)
+kind=study
+sbatch_options=()
+submit "${study_settings[@]}"
+states=$(wait_job "$array_id" 300)
+echo "study array job $array_id: $states"
+[ "$(tr ' ' '\n' <<< "$states" | sort | tr '\n' ' ')" = "COMPLETED COMPLETED COMPLETED FAILED " ] ||
+  fail "expected 3 tasks completed and 1 failed, got '$states'"
+[[ "$(scontrol -o show job "${array_id}_3")" == *JobState=FAILED* ]] || fail "task 3 did not fail"
+merge_state=$(wait_job "$merge_id" 120)
+echo "study merge job $merge_id after task 3 was killed: $merge_state"
+[ "$merge_state" = CANCELLED ] || fail "the merge job ran ($merge_state) although task 3 was killed"
+[ ! -e "$results/sharded/instances.csv" ] || fail "a merged instances.csv exists although shard 3 is missing"
+if refused=$(timeout "$(remaining)" "$certcyl" merge "$results/sharded" --no-plots 2>&1); then
+  fail "certcyl merge accepted the shards without shard 3: $refused"
+fi
+[[ "$refused" == *"missing shard(s) 3 of 4"* ]] || fail "certcyl merge did not name shard 3: $refused"
+echo "certcyl merge refused: $refused"
+
+rm "$killed"
+submit "${study_settings[@]}" CERTCYL_TASKS=3
+states=$(wait_job "$array_id" 300)
+merge_state=$(wait_job "$merge_id" 300)
+echo "re-run of shard 3: array job $array_id $states, merge job $merge_id $merge_state"
+[ "$states" = COMPLETED ] && [ "$merge_state" = COMPLETED ] || fail "the re-run of shard 3 or its merge did not complete"
+bash "$source_dir/tests/slurm/compare_study.sh" "$results/unsharded" "$results/sharded" ||
+  fail "the merged shards differ from the unsharded study"
+
+# --- 2. The cross-check: summed counts against an unsharded run; a missing shard reported.
+timeout "$(remaining)" "$crosscheck" --query all --cases 120 --threads 2 > "$work/crosscheck-unsharded.txt" || fail "the unsharded cross-check failed"
+kind=crosscheck
+crosscheck_settings=(CERTCYL_CROSSCHECK="$crosscheck" CERTCYL_OUT="$results" CERTCYL_QUERY=all CERTCYL_CASES=120 CERTCYL_SHARDS=3)
+sbatch_options=()
+submit "${crosscheck_settings[@]}" CERTCYL_NAME=crosscheck
+states=$(wait_job "$array_id" 300)
+merge_state=$(wait_job "$merge_id" 120)
+echo "cross-check array job $array_id: $states; merge job $merge_id: $merge_state"
+[ "$states" = "COMPLETED COMPLETED COMPLETED" ] && [ "$merge_state" = COMPLETED ] || fail "the cross-check jobs did not complete"
+counts() { grep -E '^(line|triangle|cylinder): ' "$1"; }
+if ! diff <(counts "$work/crosscheck-unsharded.txt") <(counts "$results/crosscheck/summary.txt"); then
+  fail "the cross-check's shards summed differ from the unsharded run (above)"
+fi
+[ "$(counts "$results/crosscheck/summary.txt" | wc -l)" -eq 3 ] || fail "the merged cross-check lacks a query"
+grep -q '^  seed 3, cases 0 to 119 in 3 shards;' "$results/crosscheck/summary.txt" || fail "the merged cylinder range is not cases 0 to 119"
+
+sbatch_options=(--hold)
+submit "${crosscheck_settings[@]}" CERTCYL_NAME=crosscheck-lost
+scancel "${array_id}_2" || fail "scancel ${array_id}_2"
+scontrol release "$array_id" "$merge_id" || fail "scontrol release"
+wait_job "$array_id" 300 > /dev/null
+merge_state=$(wait_job "$merge_id" 120)
+echo "cross-check merge job $merge_id after a cancelled task: $merge_state"
+[ "$merge_state" = FAILED ] || fail "the cross-check merge job did not fail ($merge_state) with shard 2 missing"
+grep -q "missing shard(s) 2 of 3" "$results/crosscheck-lost/summary.txt" || fail "the cross-check merge did not name shard 2"
+echo "slurm test: passed"
