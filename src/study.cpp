@@ -12,8 +12,10 @@
 //   failure_maps/*.csv    the 2-D ulp perturbation grids, one column per method (+ *.json)
 //   hunt.csv              the worst input found per method, in hexfloats
 //   figures/*.png|pdf     written by experiments/plot_study.py from the CSV files
-// A shard (--shard i/n) writes results/<name>/shard-i-of-n/ without summary and figures;
-// `certcyl merge` makes the rest (study_merge.cpp).
+//   manifest.json         written last: size, rows and SHA-256 of every file but the figures
+// The folder is written as <parent>/.<name>.partial and renamed when complete, replacing any
+// earlier one. A shard (--shard i/n) writes results/<name>/shard-i-of-n/ without summary and
+// figures; `certcyl merge` verifies the shards and makes the rest (study_merge.cpp).
 #include <chrono>
 #include <fstream>
 #include <iomanip>
@@ -40,14 +42,17 @@ int run_study(StudyOptions o, std::ostream& out) {
   fs::path dir = fs::path(o.out_root) / o.name;
   const bool sharded = o.shard_count > 1;
   if (sharded) dir /= "shard-" + std::to_string(o.shard_index) + "-of-" + std::to_string(o.shard_count);
-  fs::create_directories(dir);
+  // Everything is written aside and the folder takes its place when complete (study_manifest.cpp).
+  const fs::path work = begin_folder(dir);
 
   std::vector<Planned> plan = plan_instances(o);
   std::vector<std::vector<Row>> rows = run_instances(o, registry, plan);
-  write_instances(dir, plan, rows);
-  if (o.map_cells > 0 && o.shard_index == 0) run_failure_maps(o, registry, dir);
-  if (o.hunt_evaluations > 0) run_hunt(o, registry, dir);
-  std::ofstream(dir / "machine.json") << machine_json(o, peers).dump(2) << '\n';
+  write_instances(work, plan, rows);
+  if (o.map_cells > 0 && o.shard_index == 0) run_failure_maps(o, registry, work);
+  if (o.hunt_evaluations > 0) run_hunt(o, registry, work);
+  std::ofstream(work / "machine.json") << machine_json(o, peers).dump(2) << '\n';
+  const std::string table = sharded ? std::string() : write_summary(work);
+  seal_folder(work, dir);
 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (sharded) {
@@ -56,7 +61,7 @@ int run_study(StudyOptions o, std::ostream& out) {
         << '\n';
     return 0;
   }
-  out << write_summary(dir);
+  out << table;
   out << "results: " << dir.string() << " (" << std::fixed << std::setprecision(1) << seconds << " s)\n";
   run_plots(dir, o.plots, out);
   return 0;

@@ -7,7 +7,8 @@
 //   study_hunt.cpp       the worst-input hunt (hunt.csv)
 //   study_machine.cpp    the build and machine facts (machine.json)
 //   study_report.cpp     the summary tables from the CSV files, and the figures
-//   study_merge.cpp      the shards checked and merged
+//   study_manifest.cpp   the results folder written aside, sealed by its manifest, renamed
+//   study_merge.cpp      the shards verified, checked against each other and merged
 //   study.cpp            `certcyl study`: the stages in order
 #pragma once
 
@@ -109,6 +110,25 @@ nlohmann::ordered_json machine_json(const StudyOptions& o, const std::vector<std
 std::string write_summary(const fs::path& dir);
 // Runs experiments/plot_study.py on dir when wanted and possible, else says how (study_report.cpp).
 void run_plots(const fs::path& dir, bool want, std::ostream& out);
+
+// ---- The sealed results folder (study_manifest.cpp) --------------------------------------------
+
+// The SHA-256 of a file's bytes, in lowercase hex (OpenSSL's EVP interface).
+std::string sha256_file(const fs::path& p);
+// Where a run writes before its folder `dir` is complete: <parent>/.<name>.partial.
+fs::path partial_folder(const fs::path& dir);
+// Removes what an earlier run left in the partial folder of `dir`, creates it and returns it.
+fs::path begin_folder(const fs::path& dir);
+// Writes dir/manifest.json (last): every file the folder holds, with its size, data rows (CSV)
+// and SHA-256, and the shard, options and build of dir/machine.json.
+void write_manifest(const fs::path& dir);
+// Writes the manifest of `partial`, then puts `partial` in the place of `dir` (any earlier
+// `dir` removed: between the two renames `dir` is absent, never a mixture of two runs).
+void seal_folder(const fs::path& partial, const fs::path& dir);
+// Verifies `dir` against its manifest (every listed file present, with its rows, size and
+// SHA-256; no other file; the manifest's configuration that of machine.json) and returns its
+// machine.json. Throws std::runtime_error naming `label` (the folder as reported) and the file.
+nlohmann::json verified_machine(const fs::path& dir, const std::string& label);
 
 // ---- Threads and progress --------------------------------------------------------------------
 

@@ -1,5 +1,6 @@
-// `certcyl merge`: the shards of a study checked against each other and merged into the outputs
-// of an unsharded run of the same configuration.
+// `certcyl merge`: the shards of a study verified against their manifests, checked against each
+// other and merged into the outputs of an unsharded run of the same configuration, sealed by a
+// manifest of their own.
 #include <fstream>
 #include <map>
 #include <set>
@@ -12,12 +13,16 @@ using namespace detail;
 
 namespace {
 
-// The shards of a study folder, checked: each shard-* folder holds a machine.json whose
-// "shard" is i/n (the folder's name is not trusted: a copied folder is a duplicate); every
+// The shards of a study folder, checked: each shard-* folder is first verified against its
+// manifest (study_manifest.cpp: every file whole, nothing added), then its machine.json gives
+// its "shard" i/n (the folder's name is not trusted: a copied folder is a duplicate); every
 // shard shares one n, one configuration (every option but the shard, the thread count and the
-// name) and one build (commit, compiler, flags, CGAL, peer libraries); each of
-// 0..n-1 is there exactly once. Throws std::runtime_error naming what differs or is missing.
-std::vector<fs::path> checked_shards(const fs::path& dir, std::vector<fs::path> shards, nlohmann::json& machine) {
+// name) and one build (commit, compiler, flags, CGAL, peer libraries); each of 0..n-1 is there
+// exactly once. `unfinished` names what killed runs left (hidden .shard-* folders), for the
+// message on a missing shard. Throws std::runtime_error naming the shard and what differs, is
+// damaged or is missing.
+std::vector<fs::path> checked_shards(const fs::path& dir, std::vector<fs::path> shards, const std::vector<std::string>& unfinished,
+                                     nlohmann::json& machine) {
   std::sort(shards.begin(), shards.end());
   struct Seen {
     fs::path path;
@@ -25,12 +30,11 @@ std::vector<fs::path> checked_shards(const fs::path& dir, std::vector<fs::path> 
   };
   std::vector<Seen> seen;
   for (const fs::path& s : shards) {
-    std::ifstream in(s / "machine.json");
-    if (!in) throw std::runtime_error("merge: " + s.string() + ": no machine.json (an unfinished or foreign shard?)");
-    Seen entry{s, nlohmann::json::parse(in, nullptr, false)};
-    if (entry.machine.is_discarded() || !entry.machine.contains("options") || !entry.machine["options"].contains("shard"))
-      throw std::runtime_error("merge: " + (s / "machine.json").string() + ": not a study's machine.json");
-    seen.push_back(std::move(entry));
+    try {
+      seen.push_back({s, verified_machine(s, s.filename().string())});
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error(std::string("merge: ") + e.what());
+    }
   }
   const Seen& first = seen.front();
   auto where = [](const Seen& e) { return e.path.filename().string(); };
@@ -78,8 +82,12 @@ std::vector<fs::path> checked_shards(const fs::path& dir, std::vector<fs::path> 
     for (std::size_t k = 0; k < folders.size(); ++k) duplicate += (k ? ", " : "") + folders[k];
     duplicate += ")";
   }
-  if (!missing.empty())
-    throw std::runtime_error("merge: missing shard(s) " + missing + " of " + std::to_string(count) + " in " + dir.string());
+  if (!missing.empty()) {
+    std::string left;
+    for (const std::string& u : unfinished) left += (left.empty() ? "" : ", ") + u;
+    throw std::runtime_error("merge: missing shard(s) " + missing + " of " + std::to_string(count) + " in " + dir.string() +
+                             (left.empty() ? "" : " (unfinished runs left " + left + ")"));
+  }
   if (!duplicate.empty()) throw std::runtime_error("merge: duplicate shard(s) " + duplicate + " in " + dir.string());
   machine = first.machine;
   return shards;
@@ -90,15 +98,22 @@ std::vector<fs::path> checked_shards(const fs::path& dir, std::vector<fs::path> 
 int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
   const fs::path dir(dir_name);
   std::vector<fs::path> shards;
+  std::vector<std::string> unfinished;
   if (fs::is_directory(dir))
-    for (const auto& e : fs::directory_iterator(dir))
-      if (e.is_directory() && e.path().filename().string().rfind("shard-", 0) == 0) shards.push_back(e.path());
+    for (const auto& e : fs::directory_iterator(dir)) {
+      const std::string name = e.path().filename().string();
+      if (e.is_directory() && name.rfind("shard-", 0) == 0) shards.push_back(e.path());
+      if (e.is_directory() && name.rfind(".shard-", 0) == 0) unfinished.push_back(name);
+    }
   if (shards.empty()) {
     out << "merge: no shard-*-of-* folders in " << dir_name << '\n';
     return 1;
   }
+  std::sort(unfinished.begin(), unfinished.end());
   nlohmann::json machine;
-  shards = checked_shards(dir, std::move(shards), machine);
+  shards = checked_shards(dir, std::move(shards), unfinished, machine);
+  // The merged outputs are written in place: the manifest goes first and comes back last.
+  fs::remove(dir / "manifest.json");
   std::sort(shards.begin(), shards.end());
   // Instances and inputs in instance order; hunting lines in method order; maps from shard 0.
   std::vector<std::pair<std::uint64_t, std::string>> rows, inputs;
@@ -109,7 +124,13 @@ int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
       if (!in) throw std::runtime_error("merge: missing " + (s / file).string());
       std::string line;
       std::getline(in, line);
-      while (std::getline(in, line)) into.emplace_back(std::stoull(split(line, ',')[id_field]), line);
+      for (long n = 2; std::getline(in, line); ++n) {
+        try {
+          into.emplace_back(std::stoull(split(line, ',').at(id_field)), line);
+        } catch (const std::exception&) {
+          throw std::runtime_error("merge: " + s.filename().string() + "/" + file + ", line " + std::to_string(n) + ": not a row");
+        }
+      }
     };
     read("instances.csv", rows, 2);
     read("inputs.csv", inputs, 0);
@@ -137,6 +158,7 @@ int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
     std::ofstream(dir / "machine.json") << machine.dump(2) << '\n';
   }
   out << write_summary(dir);
+  write_manifest(dir);
   out << "merged " << shards.size() << " shards into " << dir.string() << '\n';
   run_plots(dir, plots, out);
   return 0;

@@ -1,0 +1,167 @@
+// A results folder that cannot lie: written in a temporary folder beside its final place, sealed
+// by manifest.json (written last: every file's size, data rows and SHA-256, the configuration,
+// the build and the shard) and then renamed into place; verified file by file before a merge
+// reads it (experiments/STUDY.md, "Shards and their manifest").
+#include <openssl/evp.h>
+
+#include <fstream>
+#include <memory>
+#include <stdexcept>
+
+#include "study_internal.hpp"
+
+namespace certcyl::cli::detail {
+
+namespace {
+
+// The files a manifest covers, by path relative to `dir` ('/'-separated), sorted: every regular
+// file below dir but manifest.json itself, the figures (plotted after sealing, with their own
+// manifest), the shards of a merged folder and hidden entries (unfinished runs).
+std::vector<std::string> covered_files(const fs::path& dir) {
+  std::vector<std::string> files;
+  for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator(); ++it) {
+    const std::string rel = fs::relative(it->path(), dir).generic_string();
+    const std::string name = it->path().filename().string();
+    if (it.depth() == 0 && (rel == "manifest.json" || rel == "figures" || rel.rfind("shard-", 0) == 0 || name.rfind('.', 0) == 0)) {
+      if (it->is_directory()) it.disable_recursion_pending();
+      continue;
+    }
+    if (it->is_regular_file()) files.push_back(rel);
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+// Data rows of a CSV file: its lines but the header (a last line without '\n' counts).
+long csv_rows(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  long lines = 0;
+  char last = '\n';
+  for (char c; in.get(c);) {
+    lines += c == '\n';
+    last = c;
+  }
+  lines += last != '\n';
+  return std::max(0L, lines - 1);
+}
+
+bool is_csv(const std::string& rel) { return rel.size() > 4 && rel.compare(rel.size() - 4, 4, ".csv") == 0; }
+
+nlohmann::json file_entry(const fs::path& p, const std::string& rel) {
+  nlohmann::json e;
+  e["bytes"] = fs::file_size(p);
+  if (is_csv(rel)) e["rows"] = csv_rows(p);
+  e["sha256"] = sha256_file(p);
+  return e;
+}
+
+}  // namespace
+
+std::string sha256_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  if (!in) throw std::runtime_error(p.string() + ": cannot read");
+  const std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), &EVP_MD_CTX_free);
+  if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1) throw std::runtime_error("SHA-256: OpenSSL initialisation failed");
+  std::vector<char> buf(1 << 16);
+  while (in) {
+    in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
+    if (in.gcount() > 0 && EVP_DigestUpdate(ctx.get(), buf.data(), static_cast<std::size_t>(in.gcount())) != 1)
+      throw std::runtime_error("SHA-256: OpenSSL update failed");
+  }
+  unsigned char md[EVP_MAX_MD_SIZE];
+  unsigned int len = 0;
+  if (EVP_DigestFinal_ex(ctx.get(), md, &len) != 1) throw std::runtime_error("SHA-256: OpenSSL finalisation failed");
+  static const char* hex = "0123456789abcdef";
+  std::string out;
+  for (unsigned int i = 0; i < len; ++i) out += {hex[md[i] >> 4], hex[md[i] & 15]};
+  return out;
+}
+
+fs::path partial_folder(const fs::path& dir) { return dir.parent_path() / ("." + dir.filename().string() + ".partial"); }
+
+fs::path begin_folder(const fs::path& dir) {
+  const fs::path partial = partial_folder(dir);
+  fs::remove_all(partial);
+  fs::create_directories(partial);
+  return partial;
+}
+
+nlohmann::json configuration_of(const nlohmann::json& machine) {
+  nlohmann::json c;
+  c["shard"] = machine.at("options").at("shard");
+  c["options"] = machine.at("options");
+  c["options"].erase("threads");
+  c["options"].erase("name");
+  nlohmann::json build;
+  for (const char* key : {"commit", "compiler", "flags", "cgal", "peers"}) build[key] = machine.value(key, nlohmann::json());
+  c["build"] = build;
+  return c;
+}
+
+void write_manifest(const fs::path& dir) {
+  const fs::path machine_file = dir / "machine.json";
+  std::ifstream in(machine_file);
+  if (!in) throw std::logic_error("manifest: " + machine_file.string() + " not written");
+  nlohmann::json manifest = configuration_of(nlohmann::json::parse(in));
+  nlohmann::json files = nlohmann::json::object();
+  for (const std::string& rel : covered_files(dir)) files[rel] = file_entry(dir / rel, rel);
+  manifest["files"] = files;
+  const fs::path tmp = dir / ".manifest.json.tmp";
+  {
+    std::ofstream out(tmp);
+    out << manifest.dump(2) << '\n';
+    out.flush();
+    if (!out) throw std::runtime_error(tmp.string() + ": cannot write");
+  }
+  fs::rename(tmp, dir / "manifest.json");
+}
+
+void seal_folder(const fs::path& partial, const fs::path& dir) {
+  write_manifest(partial);
+  // Between the two renames `dir` is absent, never a mixture of two runs.
+  const fs::path old = dir.parent_path() / ("." + dir.filename().string() + ".old");
+  fs::remove_all(old);
+  if (fs::exists(dir)) fs::rename(dir, old);
+  fs::rename(partial, dir);
+  fs::remove_all(old);
+}
+
+nlohmann::json verified_machine(const fs::path& dir, const std::string& label) {
+  const fs::path manifest_file = dir / "manifest.json";
+  std::ifstream in(manifest_file);
+  if (!in) throw std::runtime_error(label + ": no manifest.json (an unfinished, killed or foreign run)");
+  const nlohmann::json manifest = nlohmann::json::parse(in, nullptr, false);
+  if (manifest.is_discarded() || !manifest.is_object() || !manifest.contains("files") || !manifest["files"].is_object())
+    throw std::runtime_error(label + "/manifest.json: not a study manifest");
+  const std::vector<std::string> present = covered_files(dir);
+  for (const auto& [rel, entry] : manifest["files"].items()) {
+    const std::string where = label + "/" + rel;
+    const fs::path p = dir / rel;
+    if (!fs::is_regular_file(p)) throw std::runtime_error(where + ": missing (listed in the manifest)");
+    if (!entry.is_object()) throw std::runtime_error(label + "/manifest.json: not a study manifest");
+    if (entry.contains("rows")) {
+      const long rows = csv_rows(p), listed = entry["rows"].get<long>();
+      if (rows != listed)
+        throw std::runtime_error(where + ": " + std::to_string(rows) + " data rows, the manifest lists " + std::to_string(listed));
+    }
+    if (fs::file_size(p) != entry.value("bytes", std::uintmax_t{0}))
+      throw std::runtime_error(where + ": " + std::to_string(fs::file_size(p)) + " bytes, the manifest lists " + entry.value("bytes", nlohmann::json()).dump());
+    if (sha256_file(p) != entry.value("sha256", std::string()))
+      throw std::runtime_error(where + ": SHA-256 differs from the manifest (the file was altered)");
+  }
+  for (const std::string& rel : present)
+    if (!manifest["files"].contains(rel)) throw std::runtime_error(label + "/" + rel + ": not in the manifest");
+  // machine.json is covered above; its configuration must be the manifest's.
+  std::ifstream m(dir / "machine.json");
+  if (!m) throw std::runtime_error(label + "/machine.json: missing");
+  nlohmann::json machine = nlohmann::json::parse(m, nullptr, false);
+  if (machine.is_discarded() || !machine.contains("options") || !machine["options"].contains("shard"))
+    throw std::runtime_error(label + "/machine.json: not a study's machine.json");
+  const nlohmann::json expected = configuration_of(machine);
+  for (const char* key : {"shard", "options", "build"})
+    if (manifest.value(key, nlohmann::json()) != expected[key])
+      throw std::runtime_error(label + "/manifest.json: its " + key + " differs from machine.json's");
+  return machine;
+}
+
+}  // namespace certcyl::cli::detail
