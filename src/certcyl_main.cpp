@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "demo.hpp"
+#include "interrupt.hpp"
 #include "query.hpp"
 #include "scene.hpp"
 #include "scene_generator.hpp"
@@ -52,13 +53,13 @@ int main(int argc, char** argv) {
                     "lazy_gmpq, core_expr (default double)")
       ->check([](const std::string& s) {
         try {
-          certcyl::parse_number_type(s);
+          certcyl::parse_number_type(s, "");
           return std::string();
         } catch (const certcyl::InvalidInput& e) {
           return std::string(e.what());
         }
       });
-  query->add_option("--threads", threads, "Worker threads (default 1; 0 = all cores)");
+  query->add_option("--threads", threads, "Worker threads (default 1; 0 = all cores)")->check(CLI::Range(0u, 1024u));
 
   std::string scene_file;
   unsigned scene_threads = 1;
@@ -74,7 +75,8 @@ int main(int argc, char** argv) {
       "same as JSON. Exit status: 0 done, 2 invalid scene, 1 I/O error.\n"
       "A random scene to try it on: certcyl make-scene --cylinders 100000 --seed 1 > scene.json");
   scene->add_option("FILE", scene_file, "Scene JSON file")->required();
-  scene->add_option("--threads", scene_threads, "Worker threads for the narrow phase (default 1; 0 = all cores)");
+  scene->add_option("--threads", scene_threads, "Worker threads for the narrow phase (default 1; 0 = all cores)")
+      ->check(CLI::Range(0u, 1024u));
   scene->add_flag("--progress", scene_progress, "Report progress on standard error (default: when it is a terminal)");
   bool scene_stats = false;
   scene->add_flag("--stats", scene_stats,
@@ -91,10 +93,13 @@ int main(int argc, char** argv) {
       "of exactly touching axis-parallel pairs with dyadic coordinates, named walls<j>a/b, caps<j>a/b,\n"
       "crossing<j>a/b and capwall<j>a/b (wall to wall, cap to cap, crossing walls, cap on wall). The same\n"
       "seed gives the same scene on every machine. Writes the scene JSON to standard output.");
-  make_scene->add_option("--cylinders", scene_spec.cylinders, "Number of cylinders (default 100000)");
+  make_scene->add_option("--cylinders", scene_spec.cylinders, "Number of cylinders (default 100000)")
+      ->check(CLI::Range(1, 100000000));
   make_scene->add_option("--seed", scene_spec.seed, "Random seed (default 1)");
-  make_scene->add_option("--neighbours", scene_spec.neighbours, "Mean number of boxes meeting a cylinder's box (default 8)");
-  make_scene->add_option("--touching", scene_spec.touching_share, "Share of cylinders in exactly touching pairs (default 0.02)");
+  make_scene->add_option("--neighbours", scene_spec.neighbours, "Mean number of boxes meeting a cylinder's box (default 8)")
+      ->check(CLI::Range(0.01, 1000.0));
+  make_scene->add_option("--touching", scene_spec.touching_share, "Share of cylinders in exactly touching pairs (default 0.02)")
+      ->check(CLI::Range(0.0, 1.0));
 
   certcyl::cli::StudyOptions study_options;
   std::string shard;
@@ -132,6 +137,7 @@ int main(int argc, char** argv) {
 
   if (demo->parsed()) return certcyl::cli::run_demo(std::cout);
   if (query->parsed()) {
+    certcyl::cli::install_interrupt_handlers();
     options.nt = certcyl::parse_number_type(nt_name);
     options.nt_given = query->count("--nt") > 0;
     if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <iostream>
 #include <set>
 #include <thread>
 
 #include "certcyl/errors.hpp"
+#include "interrupt.hpp"
 
 namespace certcyl::cli {
 
@@ -36,21 +38,122 @@ std::string join(const std::vector<std::string>& v) {
   return s;
 }
 
-ojson error_line(const json& id, const std::string& message) { return ojson{{"id", ojson(id)}, {"error", message}}; }
+ojson error_line(const json& id, std::size_t line_number, const std::string& message) {
+  ojson e{{"id", ojson(id)}};
+  if (line_number > 0) e["line"] = line_number;
+  e["error"] = message;
+  return e;
+}
+
+// A structural fault of the line itself (duplicate member, nesting too deep), raised by the
+// parser callback and reported like a syntax error.
+struct LineFault : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Parses one line strictly: a member name twice in one object (JSON leaves the meaning open;
+// the last would silently win) and nesting deeper than kMaxNesting are errors.
+json parse_strict(const std::string& line) {
+  std::vector<std::vector<std::string>> names;  // the member names of each open object
+  auto callback = [&](int depth, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        if (depth >= kMaxNesting)
+          throw LineFault("nested deeper than " + std::to_string(kMaxNesting) + " levels");
+        if (event == json::parse_event_t::object_start) names.emplace_back();
+        break;
+      case json::parse_event_t::object_end: names.pop_back(); break;
+      case json::parse_event_t::key: {
+        auto& seen = names.back();
+        const auto& key = parsed.get_ref<const std::string&>();
+        if (std::find(seen.begin(), seen.end(), key) != seen.end()) throw LineFault("member \"" + key + "\" appears twice in one object");
+        seen.push_back(key);
+        break;
+      }
+      default: break;
+    }
+    return true;
+  };
+  return json::parse(line, callback);
+}
+
+// The id of a line that is not valid JSON, when its text still shows one at the top level:
+// "id": followed by a number or a string. Null otherwise.
+json recover_id(const std::string& line) {
+  int depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '{' || c == '[') ++depth;
+    else if (c == '}' || c == ']') --depth;
+    else if (c == '"') {
+      if (depth == 1 && line.compare(i, 4, "\"id\"") == 0) {
+        std::size_t j = line.find_first_not_of(" \t", i + 4);
+        if (j == std::string::npos || line[j] != ':') return nullptr;
+        j = line.find_first_not_of(" \t", j + 1);
+        if (j == std::string::npos) return nullptr;
+        // The longest prefix of the rest that parses as a number or a string.
+        std::size_t end = j;
+        if (line[j] == '"') {
+          for (end = j + 1; end < line.size() && line[end] != '"'; ++end)
+            if (line[end] == '\\') ++end;
+          ++end;
+        } else {
+          end = line.find_first_of(",}] \t", j);
+        }
+        const json id = json::parse(line.substr(j, end == std::string::npos ? std::string::npos : end - j), nullptr, false);
+        return id.is_number() || id.is_string() ? id : json(nullptr);
+      }
+      in_string = true;
+    }
+  }
+  return nullptr;
+}
+
+// The path of the first number in j that is not finite ("interval[0].approx"), or "".
+std::string non_finite_member(const ojson& j, const std::string& path) {
+  if (j.is_number_float()) return std::isfinite(j.get<double>()) ? std::string() : path;
+  if (j.is_object()) {
+    for (auto it = j.begin(); it != j.end(); ++it)
+      if (auto p = non_finite_member(it.value(), path.empty() ? it.key() : path + "." + it.key()); !p.empty()) return p;
+  } else if (j.is_array()) {
+    for (std::size_t i = 0; i < j.size(); ++i)
+      if (auto p = non_finite_member(j[i], path + "[" + std::to_string(i) + "]"); !p.empty()) return p;
+  }
+  return {};
+}
 
 }  // namespace
 
-ojson answer_line(const std::string& line, const QueryOptions& options) {
+ojson answer_line(const std::string& line, const QueryOptions& options, std::size_t line_number) {
+  if (line.size() > kMaxLineBytes)
+    return error_line(nullptr, line_number, "line longer than the limit of " + std::to_string(kMaxLineBytes) + " bytes");
   json input;
   try {
-    input = json::parse(line);
+    input = parse_strict(line);
   } catch (const json::exception& e) {
-    // The parser's message names the byte where the line stopped being JSON.
-    return error_line(nullptr, std::string("malformed JSON: ") + e.what());
+    // The parser's message names the column where the line stopped being JSON ("line 1" of
+    // its input, which is this one line).
+    std::string what = e.what();
+    if (auto at = what.find("at line 1, "); at != std::string::npos) what.erase(at, std::string("at line 1, ").size()).insert(at, "at ");
+    return error_line(recover_id(line), line_number, "malformed JSON: " + what);
+  } catch (const LineFault& e) {
+    return error_line(recover_id(line), line_number, std::string("malformed JSON: ") + e.what());
   }
-  if (!input.is_object()) return error_line(nullptr, "expected a JSON object per line, got " + std::string(input.type_name()));
-  const json id = input.contains("id") ? input["id"] : json(nullptr);
+  if (!input.is_object())
+    return error_line(nullptr, line_number, "expected a JSON object per line, got " + std::string(input.type_name()));
+  // The id is echoed only when it is a string or a number (null otherwise).
+  const auto given_id = input.find("id");
+  const json id = given_id != input.end() && (given_id->is_string() || given_id->is_number()) ? *given_id : json(nullptr);
   try {
+    if (given_id != input.end() && !(given_id->is_null() || given_id->is_string() || given_id->is_number()))
+      throw InvalidInput("id", "expected a string or a number, got " + std::string(given_id->type_name()));
     auto q = input.find("query");
     if (q == input.end()) throw InvalidInput("query", "missing");
     if (!q->is_string()) throw InvalidInput("query", "expected a string");
@@ -64,16 +167,62 @@ ojson answer_line(const std::string& line, const QueryOptions& options) {
     const auto& methods = kind->second.methods;
     if (std::find(methods.begin(), methods.end(), options.method) == methods.end())
       throw InvalidInput("method", "'" + options.method + "' does not answer " + kind->first + " (methods: " + join(methods) + ")");
+    // Every member must be one the query reads: a misspelt member is an error, not a default.
+    const std::vector<std::string> members = line_members(kind->second, options.method);
+    for (auto m = input.begin(); m != input.end(); ++m) {
+      if (std::find(members.begin(), members.end(), m.key()) != members.end()) continue;
+      if (m.key() == "method" || m.key() == "nt")
+        throw InvalidInput(m.key(), "not a member of a line: the command's --" + m.key() + " option sets it for every line");
+      throw InvalidInput(m.key(), "unknown member of a " + kind->first + " line with --method " + options.method +
+                                      " (expected: " + join(members) + ")");
+    }
     ojson result{{"id", ojson(id)}};
+    if (auto meta = input.find("meta"); meta != input.end()) result["meta"] = ojson(*meta);
     const ojson answer = kind->second.answer(input, options);
     for (auto it = answer.begin(); it != answer.end(); ++it) result[it.key()] = it.value();
+    // A floating-point method whose computation left the finite doubles (an overflow, a 0/0)
+    // answers "invalid", naming the value: a failure the judgement counts, never a crash and
+    // never a silent null.
+    if (options.method != "certified") {
+      if (const std::string where = non_finite_member(answer, ""); !where.empty()) {
+        result["computed_answer"] = result["answer"];
+        result["answer"] = "invalid";
+        result["reason"] = "non-finite value in " + where;
+      }
+    }
     return result;
   } catch (const InvalidInput& e) {
-    return error_line(id, e.what());
+    return error_line(id, line_number, e.what());
+  } catch (const std::bad_alloc&) {
+    return error_line(id, line_number, "out of memory answering this line");
   } catch (const std::exception& e) {
-    return error_line(id, std::string("internal error: ") + e.what());
+    return error_line(id, line_number, std::string("internal error: ") + e.what());
   }
 }
+
+std::vector<std::string> line_members(const QueryKind& kind, const std::string& method) {
+  std::vector<std::string> m{"id", "query", "meta"};
+  m.insert(m.end(), kind.operands.begin(), kind.operands.end());
+  if (auto extra = kind.method_members.find(method); extra != kind.method_members.end())
+    m.insert(m.end(), extra->second.begin(), extra->second.end());
+  return m;
+}
+
+namespace {
+
+// Reads one line (without its '\n') from sb, keeping at most limit + 1 bytes of it, so that a
+// line without end cannot exhaust memory. False at the end of input.
+bool read_line(std::streambuf& sb, std::string& line, std::size_t limit) {
+  line.clear();
+  using traits = std::streambuf::traits_type;
+  int c = sb.sbumpc();
+  if (traits::eq_int_type(c, traits::eof())) return false;
+  for (; !traits::eq_int_type(c, traits::eof()) && c != '\n'; c = sb.sbumpc())
+    if (line.size() <= limit) line.push_back(traits::to_char_type(c));
+  return true;
+}
+
+}  // namespace
 
 int run_query(std::istream& in, std::ostream& out, const QueryOptions& options, unsigned threads) {
   threads = std::max(1u, threads);
@@ -81,32 +230,38 @@ int run_query(std::istream& in, std::ostream& out, const QueryOptions& options, 
   // the batch is written in input order.
   const std::size_t batch_size = 256 * threads;
   std::vector<std::string> lines;
+  std::vector<std::size_t> numbers;  // each line's number in the input, from 1
   std::vector<std::string> answers;
+  std::size_t line_number = 0;
   bool any_error = false;
   bool eof = false;
+  std::streambuf* sb = in.rdbuf();
   while (!eof) {
     lines.clear();
+    numbers.clear();
     std::string line;
-    while (lines.size() < batch_size) {
-      if (!std::getline(in, line)) {
-        eof = true;
-        break;
+    {
+      const InterruptibleRead reading;
+      while (lines.size() < batch_size) {
+        if (!read_line(*sb, line, kMaxLineBytes)) {
+          eof = true;
+          break;
+        }
+        ++line_number;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        // Blank lines carry no query and get no answer.
+        if (line.find_first_not_of(" \t") == std::string::npos) continue;
+        lines.push_back(line);
+        numbers.push_back(line_number);
       }
-      if (!line.empty() && line.back() == '\r') line.pop_back();
-      // Blank lines carry no query and get no answer.
-      if (line.find_first_not_of(" \t") == std::string::npos) continue;
-      lines.push_back(line);
-    }
-    if (in.bad()) {
-      std::cerr << "certcyl query: error reading standard input\n";
-      return 1;
     }
     answers.assign(lines.size(), std::string());
     std::atomic<std::size_t> next{0};
     std::atomic<bool> batch_error{false};
     auto work = [&] {
-      for (std::size_t i = next++; i < lines.size(); i = next++) {
-        const ojson a = answer_line(lines[i], options);
+      // After an interruption no new line is started.
+      for (std::size_t i = next++; i < lines.size() && !interrupt_signal(); i = next++) {
+        const ojson a = answer_line(lines[i], options, numbers[i]);
         if (a.contains("error")) batch_error = true;
         answers[i] = a.dump(-1, ' ', false, ojson::error_handler_t::replace);
       }
@@ -119,12 +274,17 @@ int run_query(std::istream& in, std::ostream& out, const QueryOptions& options, 
       for (auto& t : pool) t.join();
     }
     any_error = any_error || batch_error;
-    for (const auto& a : answers) out << a << '\n';
+    // Every complete answer up to the first line not answered, in input order.
+    for (const auto& a : answers) {
+      if (a.empty()) break;
+      out << a << '\n';
+    }
     out.flush();
     if (!out) {
       std::cerr << "certcyl query: error writing standard output\n";
       return 1;
     }
+    if (const int sig = interrupt_signal()) return 128 + sig;
   }
   return any_error ? 2 : 0;
 }

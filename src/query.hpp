@@ -1,8 +1,15 @@
 // `certcyl query`: certified reference answers as JSON lines.
 //
-// Each input line is one JSON object {"id": ..., "query": Q, operands...}; each output line
-// answers it, in the same order, echoing "id". A line that cannot be answered gets
-// {"id": ..., "error": "<field>: <what>"} and processing goes on.
+// Each input line is one JSON object {"id": ..., "query": Q, operands..., "meta": ...}; each
+// output line answers it, in the same order, echoing "id" and "meta" (a line's own annotations,
+// passed through untouched). A line that cannot be answered gets
+// {"id": ..., "line": N, "error": "<field>: <what>"} (N its number in the input, from 1) and
+// processing goes on.
+//
+// Input is strict: a member the query does not read, a member name twice in one object, an id
+// that is not a string or a number, nesting deeper than kMaxNesting and lines longer than
+// kMaxLineBytes are errors of that line. The id of a line that is not JSON is recovered from its
+// text when it shows one.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -26,12 +33,21 @@ struct QueryOptions {
   bool nt_given = false;  // --nt was on the command line
 };
 
+// Limits on one input line.
+inline constexpr std::size_t kMaxLineBytes = std::size_t{1} << 20;
+inline constexpr int kMaxNesting = 16;
+
 // One query kind: the methods that answer it and how.
 struct QueryKind {
   std::string name;
   std::vector<std::string> methods;  // the first is the default ("certified")
   std::function<ojson(const json& input, const QueryOptions& options)> answer;
+  std::vector<std::string> operands;  // the members every method reads
+  std::map<std::string, std::vector<std::string>> method_members = {};  // members only some methods read
 };
+
+// The members a line of `kind` may have under `method`: id, query, meta and its operands.
+std::vector<std::string> line_members(const QueryKind& kind, const std::string& method);
 
 // Every query kind the command knows, by name.
 const std::map<std::string, QueryKind>& query_kinds();
@@ -39,11 +55,13 @@ const std::map<std::string, QueryKind>& query_kinds();
 // Every method name any query accepts (for --help and validation).
 std::vector<std::string> all_methods();
 
-// Answers one input line (already split off the stream); never throws.
-ojson answer_line(const std::string& line, const QueryOptions& options);
+// Answers one input line (already split off the stream; line_number, from 1, is reported with an
+// error, 0 for none); never throws.
+ojson answer_line(const std::string& line, const QueryOptions& options, std::size_t line_number = 0);
 
 // Runs the command on a stream. Returns 0 when every line was answered, 2 when some line had an
-// error, 1 on an I/O failure.
+// error, 1 on an I/O failure, 128 + the signal's number when SIGINT or SIGTERM ended the run
+// (interrupt.hpp: every complete answered line is written first, never a partial one).
 int run_query(std::istream& in, std::ostream& out, const QueryOptions& options, unsigned threads);
 
 // Registration of each query family (one source file each).

@@ -117,7 +117,11 @@ ojson answer_cylinders(const json& in, const QueryOptions& o) {
 }  // namespace
 
 void register_cylinder_queries(std::map<std::string, QueryKind>& kinds) {
-  kinds["cylinder_cylinder"] = {"cylinder_cylinder", {"certified", "eberly_corrected", "eberly_as_written"}, answer_cylinders};
+  kinds["cylinder_cylinder"] = {"cylinder_cylinder",
+                                {"certified", "eberly_corrected", "eberly_as_written"},
+                                answer_cylinders,
+                                {"a", "b"},
+                                {{"eberly_corrected", {"parameters"}}, {"eberly_as_written", {"parameters"}}}};
 }
 
 }  // namespace certcyl::cli

@@ -4,6 +4,8 @@
 // gullotti (the seeds' methods, generic: --nt), shene_as_written (the text's "r < |d|"
 // unchanged), gullotti_as_written (the seed's tangency rule unchanged), robust_double
 // (cancellation-free discriminant, stable roots, FMA).
+#include <cmath>
+
 #include "certcyl/certified/line_cylinder.hpp"
 #include "certcyl/io/json_input.hpp"
 #include "certcyl/robust/line_cylinder.hpp"
@@ -43,7 +45,9 @@ ojson interval_json(const LineInterval<NT>& r) {
     if (!*e) continue;
     const auto [lo, hi] = nt::to_interval((*e)->t);
     ojson ep{{"approx", nt::to_double((*e)->t)}, {"feature", std::string(to_string((*e)->feature))}};
-    if (lo == hi) {
+    if (!std::isfinite(lo) || !std::isfinite(hi)) {
+      ep["enclosure"] = ojson::array({lo, hi});  // not a number: the answer becomes "invalid"
+    } else if (lo == hi) {
       ep["exact"] = to_exact_string(Rational(lo));  // the computed value is this binary64 number
     } else {
       ep["enclosure"] = ojson::array({lo, hi});
@@ -131,7 +135,8 @@ void register_kind(std::map<std::string, QueryKind>& kinds, const std::string& n
                    const LineLike x = (reader.*read_line)(JsonReader::member(in, "", line_field), line_field);
                    const Solid s = (reader.*read_solid)(JsonReader::member(in, "", solid_field), solid_field);
                    return answer_line_query(x, s, reader.all_binary64(), o);
-                 }};
+                 },
+                 {line_field, solid_field}};
 }
 
 }  // namespace

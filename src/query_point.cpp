@@ -38,11 +38,13 @@ ojson point_query(const json& input, const QueryOptions& options, const char* so
 void register_point_queries(std::map<std::string, QueryKind>& kinds) {
   kinds["point_cylinder"] = {"point_cylinder", {"certified", "polynomial"}, [](const json& in, const QueryOptions& o) {
                                return point_query(in, o, "cylinder", &JsonReader::cylinder);
-                             }};
+                             },
+                             {"point", "cylinder"}};
   kinds["point_elliptic_cylinder"] = {
       "point_elliptic_cylinder", {"certified", "polynomial"}, [](const json& in, const QueryOptions& o) {
         return point_query(in, o, "elliptic_cylinder", &JsonReader::elliptic_cylinder);
-      }};
+      },
+      {"point", "elliptic_cylinder"}};
 }
 
 }  // namespace certcyl::cli

@@ -64,7 +64,7 @@ ojson answer_triangle(const json& in, const QueryOptions& o) {
 }  // namespace
 
 void register_triangle_queries(std::map<std::string, QueryKind>& kinds) {
-  kinds["triangle_cylinder"] = {"triangle_cylinder", {"certified", "eberly"}, answer_triangle};
+  kinds["triangle_cylinder"] = {"triangle_cylinder", {"certified", "eberly"}, answer_triangle, {"triangle", "cylinder"}};
 }
 
 }  // namespace certcyl::cli

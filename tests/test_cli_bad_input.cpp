@@ -63,8 +63,13 @@ BOOST_AUTO_TEST_CASE(malformed_and_truncated_json) {
   BOOST_TEST(error_of(sandwiched("[1, 2, 3]")).find("expected a JSON object") == 0u);
   BOOST_TEST(error_of(sandwiched("null")).find("expected a JSON object") == 0u);
   BOOST_TEST(error_of(sandwiched(R"("just a string")")).find("expected a JSON object") == 0u);
-  // The id of a malformed line is unknown: null.
-  BOOST_TEST(sandwiched(R"({"id": 7, "query": )")["id"].is_null());
+  // The id of a malformed line is recovered from its text when it shows one at the top level,
+  // null otherwise; the error names the line's number in the input (the sandwich's second).
+  BOOST_TEST(sandwiched(R"({"id": 7, "query": )")["id"] == 7);
+  BOOST_TEST(sandwiched(R"({"id": "a\"b", "query": )")["id"] == "a\"b");
+  BOOST_TEST(sandwiched(R"({"x": {"id": 7}, "query": )")["id"].is_null());
+  BOOST_TEST(sandwiched(R"({"id": [7], "query": )")["id"].is_null());
+  BOOST_TEST(sandwiched(R"({"id": 7 "query": 1})")["line"] == 2);
 }
 
 BOOST_AUTO_TEST_CASE(empty_input_and_blank_lines) {
@@ -93,9 +98,10 @@ BOOST_AUTO_TEST_CASE(huge_numbers) {
   const Run big = run(point_with_x(1, "1e308") + "\n");
   BOOST_TEST(big.status == 0);
   BOOST_TEST(big.lines.at(0)["answer"] == "separated");
-  // As strings these are exact rationals: "1e400" is valid (far outside), exponents beyond the
-  // parser's limit (10^100000) are rejected with the field named.
-  for (const char* x : {R"("1e308")", R"("1e400")", R"("-1e100000")", R"("0x1p400000")"}) {
+  // As strings these are exact rationals: "1e400" is valid (far outside); numbers of more than
+  // kMaxExactBits bits (10^19000 has 63,117) and exponents beyond the parser's limit (10^100000)
+  // are rejected with the field named.
+  for (const char* x : {R"("1e308")", R"("1e400")", R"("-1e19000")", R"("0x1p65000")", R"("-0x1.8p65000")"}) {
     const Run r = run(point_with_x(2, x) + "\n");
     BOOST_TEST_INFO(x);
     BOOST_TEST(r.lines.at(0)["answer"] == "separated");
@@ -104,6 +110,12 @@ BOOST_AUTO_TEST_CASE(huge_numbers) {
     const std::string e = error_of(sandwiched(point_with_x(3, x)));
     BOOST_TEST_INFO(x << ": " << e);
     BOOST_TEST(e.find("point[0]") == 0u);
+  }
+  for (const char* x : {R"("-1e100000")", R"("0x1p400000")", R"("1e19800")", R"("0x1p-65535")"}) {
+    const std::string e = error_of(sandwiched(point_with_x(3, x)));
+    BOOST_TEST_INFO(x << ": " << e);
+    BOOST_TEST(e.find("point[0]: exact number of ") == 0u);
+    BOOST_TEST(e.find("the limit is 65536") != std::string::npos);
   }
 }
 
@@ -143,7 +155,10 @@ BOOST_AUTO_TEST_CASE(deeply_nested_values) {
     const std::string in_field = point_with_x(7, nest);
     const std::string e = error_of(sandwiched(in_field));
     BOOST_TEST_INFO(e.substr(0, 200));
-    BOOST_TEST((e.find("point[0]") == 0u || e.find("nested") != std::string::npos));
+    if (in_field.size() > kMaxLineBytes)
+      BOOST_TEST(e == "line longer than the limit of 1048576 bytes");
+    else
+      BOOST_TEST(e == "malformed JSON: nested deeper than 16 levels");
     const std::string objects = R"({"id": 8, "query": "point_cylinder", "extra": )" + [&] {
       std::string s;
       for (std::size_t i = 0; i < depth; ++i) s += R"({"a":)";
@@ -175,6 +190,84 @@ BOOST_AUTO_TEST_CASE(errors_name_the_field) {
                  .find("cylinder.radius") == 0u);
   BOOST_TEST(error_of(sandwiched(R"({"id": 1, "query": 5})")).find("query") == 0u);
   BOOST_TEST(error_of(sandwiched(R"({"id": 1})")).find("query: missing") == 0u);
-  // Every error line echoes the id it could read.
-  BOOST_TEST(sandwiched(R"({"id": [1, "x"], "query": "nope"})")["id"] == json::parse(R"([1, "x"])"));
+  // Every error line echoes the id it could read; an id must be a string or a number.
+  BOOST_TEST(sandwiched(R"({"id": 1.5, "query": "nope"})")["id"] == 1.5);
+  const json array_id = sandwiched(R"({"id": [1, "x"], "query": "nope"})");
+  BOOST_TEST(array_id["id"].is_null());
+  BOOST_TEST(error_of(array_id) == "id: expected a string or a number, got array");
+}
+
+BOOST_AUTO_TEST_CASE(members_the_query_does_not_read) {
+  // A misspelt or foreign member is an error naming it and listing the valid ones, never a
+  // default silently used.
+  const json typo = sandwiched(R"({"id": 1, "query": "point_cylinder", "point": [3, 4, 1], "parameter": {}, )" + cyl5 + "}");
+  BOOST_TEST(typo["id"] == 1);
+  BOOST_TEST(error_of(typo) == "parameter: unknown member of a point_cylinder line with --method certified "
+                               "(expected: id, query, meta, point, cylinder)");
+  // method and nt are options of the command, not of a line.
+  for (const char* m : {"method", "nt"}) {
+    const std::string e = error_of(sandwiched(R"({"id": 1, "query": "point_cylinder", ")" + std::string(m) +
+                                              R"(": "x", "point": [3, 4, 1], )" + cyl5 + "}"));
+    BOOST_TEST(e == std::string(m) + ": not a member of a line: the command's --" + m + " option sets it for every line");
+  }
+  // "parameters" belongs to the Eberly methods only.
+  const std::string pair = R"({"id": 2, "query": "cylinder_cylinder", "a": {"p0": [0,0,0], "p1": [0,0,1], "radius": 1}, )"
+                           R"("b": {"p0": [5,0,0], "p1": [5,0,1], "radius": 1}, "parameters": {"max_line_searches": 3}})";
+  BOOST_TEST(error_of(sandwiched(pair)).find("parameters: unknown member of a cylinder_cylinder line with --method certified") == 0u);
+  QueryOptions eberly;
+  eberly.method = "eberly_corrected";
+  BOOST_TEST(answer_line(pair, eberly, 1)["answer"] == "separated");
+}
+
+BOOST_AUTO_TEST_CASE(meta_is_passed_through) {
+  const std::string with_meta = R"({"id": "m", "query": "point_cylinder", "point": [3, 4, 1], )" + cyl5 +
+                                R"(, "meta": {"family": "wall", "k": [3, "x"], "note": null}})";
+  const Run r = run(with_meta + "\n");
+  BOOST_TEST(r.status == 0);
+  BOOST_REQUIRE(r.lines.size() == 1u);
+  BOOST_TEST(r.lines[0]["answer"] == "touching");
+  BOOST_TEST(r.lines[0]["meta"] == json::parse(R"({"family": "wall", "k": [3, "x"], "note": null})"));
+}
+
+BOOST_AUTO_TEST_CASE(duplicate_members) {
+  // The same name twice in one object: JSON leaves the meaning open, so the line is refused
+  // (a duplicated cylinder would otherwise silently replace the first).
+  const std::string twice = R"({"id": 3, "query": "point_cylinder", "point": [0, 0, 1], )" + cyl5 +
+                            R"(, "cylinder": {"p0": [9,0,0], "p1": [9,0,2], "radius": 1}})";
+  const json e = sandwiched(twice);
+  BOOST_TEST(e["id"] == 3);
+  BOOST_TEST(error_of(e) == "malformed JSON: member \"cylinder\" appears twice in one object");
+  const std::string nested = R"({"id": 4, "query": "point_cylinder", "point": [0, 0, 1], "cylinder": {"p0": [0,0,0], "p1": [0,0,2], "radius": 1, "radius": 5}})";
+  BOOST_TEST(error_of(sandwiched(nested)) == "malformed JSON: member \"radius\" appears twice in one object");
+  // The same name in different objects is fine.
+  const Run ok = run(R"({"id": 5, "query": "cylinder_cylinder", "a": {"p0": [0,0,0], "p1": [0,0,1], "radius": 1}, "b": {"p0": [5,0,0], "p1": [5,0,1], "radius": 1}})" "\n");
+  BOOST_TEST(ok.status == 0);
+  BOOST_TEST(ok.lines.at(0)["answer"] == "separated");
+}
+
+BOOST_AUTO_TEST_CASE(floating_methods_that_overflow_answer_invalid) {
+  // 1e300 squared overflows binary64: the floating methods' endpoints are not finite. The
+  // answer is "invalid" with the value named, never a crash or a silent null.
+  const std::string line = R"({"id": 1, "query": "line_cylinder", "line": {"origin": [0,0,0], "direction": [1e300,0,0]}, )"
+                           R"("cylinder": {"p0": [0,0,0], "p1": [0,0,1], "radius": 1}})";
+  for (const char* method : {"robust_double", "shene", "gullotti"}) {
+    QueryOptions o;
+    o.method = method;
+    const ojson a = answer_line(line, o, 1);
+    BOOST_TEST_INFO(method << ": " << a.dump());
+    BOOST_TEST(!a.contains("error"));
+    if (a["answer"] == "invalid") {
+      BOOST_TEST(a["reason"].get<std::string>().find("non-finite value in interval[") == 0u);
+      BOOST_TEST(a.contains("computed_answer"));
+    } else {
+      // A method that stays finite is compared with the certified answer.
+      BOOST_TEST(a["answer"] == answer_line(line, QueryOptions{}, 1)["answer"]);
+    }
+  }
+  QueryOptions robust;
+  robust.method = "robust_double";
+  BOOST_TEST(answer_line(line, robust, 1)["answer"] == "invalid");
+  // The certified answer of the same line: it lies in the base plane and crosses the base disc
+  // through the axis, so it meets the closed cylinder only on its boundary.
+  BOOST_TEST(answer_line(line, QueryOptions{}, 1)["answer"] == "touching");
 }

@@ -4,7 +4,8 @@
 //   a JSON number      its binary64 value (integers too: 9007199254740993 reads as 2^53);
 //                      non-finite values (a literal such as 1e400 overflows) are rejected
 //   a JSON string      the exact rational it spells: "p/q", decimal "0.1", hexfloat "0x1.8p-3"
-//                      (grammar in certcyl/rational.hpp)
+//                      (grammar in certcyl/rational.hpp), of at most kMaxExactBits bits of
+//                      numerator and denominator together (larger ones are an error)
 // The reader remembers whether every number it read was exactly a binary64 value, so a
 // floating-point kernel can report that it saw rounded input.
 //
@@ -33,6 +34,15 @@
 #include "certcyl/rational.hpp"
 
 namespace certcyl {
+
+// The largest exact number the reader accepts, in bits of numerator and denominator together:
+// the exact stages' cost grows with the operands' size, and this bounds the time of one query.
+inline constexpr long kMaxExactBits = 65536;
+
+// Bits of numerator and denominator of q.
+inline long exact_bits(const Rational& q) {
+  return static_cast<long>(mpz_sizeinbase(q.numerator().mpz(), 2) + mpz_sizeinbase(q.denominator().mpz(), 2));
+}
 
 class JsonReader {
  public:
@@ -143,6 +153,9 @@ class JsonReader {
         return {Rational(static_cast<double>(j.get<std::uint64_t>())), true};
       case json::value_t::string: {
         Rational q = parse_rational(j.get_ref<const std::string&>(), field);
+        if (const long bits = exact_bits(q); bits > kMaxExactBits)
+          throw InvalidInput(field, "exact number of " + std::to_string(bits) + " bits (numerator and denominator); the limit is " +
+                                        std::to_string(kMaxExactBits) + " (about 19,700 decimal digits)");
         const bool b64 = is_binary64(q);
         return {std::move(q), b64};
       }
