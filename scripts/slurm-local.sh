@@ -32,7 +32,7 @@ stop() {
         kill -0 "$pid" 2> /dev/null || break
         sleep 0.1
       done
-      kill -0 "$pid" 2> /dev/null && kill -KILL "$pid" 2> /dev/null || true
+      if kill -0 "$pid" 2> /dev/null; then kill -KILL "$pid" 2> /dev/null || true; fi
     fi
     rm -f "$dir/run/$name.pid"
   done

@@ -9,7 +9,8 @@
 #                    CERTCYL_BIN and CERTCYL_CROSSCHECK name the programs themselves
 #   CERTCYL_SHARDS   number of shards N (default 8); the array is 0..N-1
 #   CERTCYL_TASKS    the array indices to submit (default 0-(N-1)); e.g. 3 or 3,5 re-runs only
-#                    those shards, and a new merge job waits for them
+#                    those shards once the first array has ended, and a new merge job waits
+#                    for them
 #   CERTCYL_CPUS     CPUs per task (--cpus-per-task, default 1): the tasks' threads
 #   CERTCYL_OUT      results root (default: results); output in CERTCYL_OUT/CERTCYL_NAME, the
 #                    jobs' logs in its slurm/ folder
@@ -23,7 +24,8 @@
 # The study's merge job runs afterok: only when every task exited 0 (otherwise Slurm cancels it,
 # and `certcyl merge` would refuse the missing shard anyway). The cross-check's runs afterany:
 # a task that found a wrong answer exits 1, and the merge reports it with the counts, as it
-# reports a shard that is missing. Prints the two job ids.
+# reports a shard that is missing. Prints the array job's and the merge job's ids on standard
+# output, what was submitted on standard error.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 repo=$(cd "$here/../.." && pwd)
@@ -39,14 +41,16 @@ command -v sbatch > /dev/null || { echo "submit: sbatch not found (not a Slurm s
 build=$(realpath -m "${CERTCYL_BUILD:-$repo/build}")
 export CERTCYL_SHARDS=${CERTCYL_SHARDS:-8}
 export CERTCYL_SEED=${CERTCYL_SEED:-1}
-export CERTCYL_OUT=$(realpath -m "${CERTCYL_OUT:-results}")
+CERTCYL_OUT=$(realpath -m "${CERTCYL_OUT:-results}")
+export CERTCYL_OUT
 [[ "$CERTCYL_SHARDS" =~ ^[1-9][0-9]*$ ]] || { echo "submit: CERTCYL_SHARDS must be a positive integer, got '$CERTCYL_SHARDS'" >&2; exit 2; }
 tasks=${CERTCYL_TASKS:-0-$((CERTCYL_SHARDS - 1))}
 cpus=${CERTCYL_CPUS:-1}
 
 case "$kind" in
   study)
-    export CERTCYL_BIN=$(realpath -m "${CERTCYL_BIN:-$build/bin/certcyl}")
+    CERTCYL_BIN=$(realpath -m "${CERTCYL_BIN:-$build/bin/certcyl}")
+    export CERTCYL_BIN
     export CERTCYL_SIZE=${CERTCYL_SIZE:-large}
     export CERTCYL_NAME=${CERTCYL_NAME:-$CERTCYL_SIZE}
     export CERTCYL_STUDY_ARGS=${CERTCYL_STUDY_ARGS:-}
@@ -57,7 +61,8 @@ case "$kind" in
     dependency=afterok
     ;;
   crosscheck)
-    export CERTCYL_CROSSCHECK=$(realpath -m "${CERTCYL_CROSSCHECK:-$build/experiments/crosscheck}")
+    CERTCYL_CROSSCHECK=$(realpath -m "${CERTCYL_CROSSCHECK:-$build/experiments/crosscheck}")
+    export CERTCYL_CROSSCHECK
     export CERTCYL_QUERY=${CERTCYL_QUERY:-cylinder}
     export CERTCYL_CASES=${CERTCYL_CASES:-1000000}
     export CERTCYL_FIRST=${CERTCYL_FIRST:-0}

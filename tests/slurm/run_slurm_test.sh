@@ -53,9 +53,10 @@ job_states() {
 # Waits until no record of the job is pending, running or completing; fails after $2 seconds
 # or at the deadline.
 wait_job() {
-  local id=$1 limit=$2 states
+  local id=$1 limit=$2 states=""
   [ "$limit" -le "$(remaining)" ] || limit=$(remaining)
-  for _ in $(seq $((limit * 2))); do
+  local end=$((SECONDS + limit))
+  while [ "$SECONDS" -lt "$end" ]; do
     states=$(job_states "$id")
     if [ -n "$states" ] && ! [[ " $states " =~ \ (PENDING|RUNNING|CONFIGURING|COMPLETING|SUSPENDED|REQUEUED)\  ]]; then
       echo "$states"
@@ -109,7 +110,7 @@ submit "${study_settings[@]}" CERTCYL_TASKS=3
 states=$(wait_job "$array_id" 300)
 merge_state=$(wait_job "$merge_id" 300)
 echo "re-run of shard 3: array job $array_id $states, merge job $merge_id $merge_state"
-[ "$states" = COMPLETED ] && [ "$merge_state" = COMPLETED ] || fail "the re-run of shard 3 or its merge did not complete"
+if [ "$states" != COMPLETED ] || [ "$merge_state" != COMPLETED ]; then fail "the re-run of shard 3 or its merge did not complete"; fi
 bash "$source_dir/tests/slurm/compare_study.sh" "$results/unsharded" "$results/sharded" ||
   fail "the merged shards differ from the unsharded study"
 
@@ -122,7 +123,7 @@ submit "${crosscheck_settings[@]}" CERTCYL_NAME=crosscheck
 states=$(wait_job "$array_id" 300)
 merge_state=$(wait_job "$merge_id" 120)
 echo "cross-check array job $array_id: $states; merge job $merge_id: $merge_state"
-[ "$states" = "COMPLETED COMPLETED COMPLETED" ] && [ "$merge_state" = COMPLETED ] || fail "the cross-check jobs did not complete"
+if [ "$states" != "COMPLETED COMPLETED COMPLETED" ] || [ "$merge_state" != COMPLETED ]; then fail "the cross-check jobs did not complete"; fi
 counts() { grep -E '^(line|triangle|cylinder): ' "$1"; }
 if ! diff <(counts "$work/crosscheck-unsharded.txt") <(counts "$results/crosscheck/summary.txt"); then
   fail "the cross-check's shards summed differ from the unsharded run (above)"
