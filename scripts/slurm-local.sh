@@ -19,9 +19,19 @@ usage() {
 action=$1
 dir=$(realpath -m "$2")
 
-# The PIDs of the daemons started in DIR, in the order to stop them.
+# Cancels the jobs still queued or running on the cluster in DIR (their processes would outlive
+# slurmd), then stops its daemons, each by the PID it wrote.
 stop() {
   local name pid
+  if [ -f "$dir/run/slurmctld.pid" ] && [ -f "$dir/slurm.conf" ]; then
+    export SLURM_CONF=$dir/slurm.conf
+    if timeout 10 scancel --user="$(id -un)" 2> /dev/null; then
+      for _ in $(seq 100); do
+        [ -z "$(timeout 10 squeue -h -o %i 2> /dev/null || true)" ] && break
+        sleep 0.1
+      done
+    fi
+  fi
   for name in slurmd slurmctld munged; do
     [ -f "$dir/run/$name.pid" ] || continue
     pid=$(cat "$dir/run/$name.pid")

@@ -2,10 +2,12 @@
 # The batch scripts of experiments/slurm/ on a real Slurm: a private single-node cluster on this
 # machine (scripts/slurm-local.sh, as root), stopped on exit whatever happens.
 #   tests/slurm/run_slurm_test.sh CERTCYL CROSSCHECK SOURCE_DIR WORK_DIR
-# 1. A tiny study as an array job of 4 shards, task 3 killed (SIGKILL) as it starts. The merge
-#    job (afterok) must not run, and `certcyl merge` must refuse, naming shard 3. Resubmitting index 3 alone with its own merge job completes
-#    the study, and the merged CSV files must equal an unsharded run of the same configuration,
-#    row for row, but for the timing columns (tests/slurm/compare_study.sh).
+# 1. A tiny study as an array job of 4 shards: task 2 fails (killed by SIGKILL as it starts),
+#    task 3 is cancelled with scancel while it runs. The merge job (afterok) must not run, and
+#    `certcyl merge` must refuse, naming shards 2 and 3. Resubmitting indices 2 and 3 alone, with
+#    their own merge job, completes the study, and the merged CSV files must equal an unsharded
+#    run of the same configuration, row for row, but for the timing columns
+#    (tests/slurm/compare_study.sh).
 # 2. The cross-check, every query at 120 cases, as 3 array tasks and the merge job: the summed
 #    counts must equal an unsharded run's, line for line. Then the same submitted held and task
 #    2 cancelled before it runs: the merge job (afterany) must fail, naming the missing shard.
@@ -80,37 +82,54 @@ submit() {
 results=$work/results
 timeout "$(remaining)" "$certcyl" study --size tiny --threads 2 --out "$results" --name unsharded --no-plots --no-progress > "$work/unsharded.txt" ||
   fail "the unsharded study failed"
-# certcyl, but the task of shard 3 of 4 is killed (SIGKILL) as it starts while the marker exists.
-killed=$work/kill-shard-3
-wrapper=$work/certcyl-shard-3-killed
-printf '#!/usr/bin/env bash\n[ -e %q ] && [[ " $* " == *" --shard 3/4 "* ]] && kill -KILL $$\nexec %q "$@"\n' "$killed" "$certcyl" > "$wrapper"
+# certcyl, but while the marker exists the task of shard 2 of 4 kills itself (SIGKILL) as it
+# starts, and that of shard 3 waits (until the test cancels it).
+lost=$work/lose-shards-2-and-3
+wrapper=$work/certcyl-losing-shards-2-and-3
+cat > "$wrapper" << EOF
+#!/usr/bin/env bash
+if [ -e '$lost' ]; then
+  [[ " \$* " == *" --shard 2/4 "* ]] && kill -KILL \$\$
+  [[ " \$* " == *" --shard 3/4 "* ]] && exec sleep 120
+fi
+exec '$certcyl' "\$@"
+EOF
 chmod +x "$wrapper"
-touch "$killed"
+touch "$lost"
 study_settings=(CERTCYL_BIN="$wrapper" CERTCYL_OUT="$results" CERTCYL_NAME=sharded CERTCYL_SIZE=tiny CERTCYL_SHARDS=4 CERTCYL_PLOTS=0)
 kind=study
 sbatch_options=()
 submit "${study_settings[@]}"
+task_state() { scontrol -o show job "${array_id}_$1" 2> /dev/null | sed -n 's/.*JobState=\([A-Z_]*\).*/\1/p'; }
+end=$((SECONDS + 120))
+until [ "$(task_state 3)" = RUNNING ]; do
+  [ "$SECONDS" -lt "$end" ] || fail "task 3 not running within 120 s"
+  sleep 0.2
+done
+scancel "${array_id}_3" || fail "scancel ${array_id}_3"
 states=$(wait_job "$array_id" 300)
 echo "study array job $array_id: $states"
-[ "$(tr ' ' '\n' <<< "$states" | sort | tr '\n' ' ')" = "COMPLETED COMPLETED COMPLETED FAILED " ] ||
-  fail "expected 3 tasks completed and 1 failed, got '$states'"
-[[ "$(scontrol -o show job "${array_id}_3")" == *JobState=FAILED* ]] || fail "task 3 did not fail"
+[ "$(task_state 2)" = FAILED ] || fail "task 2 is $(task_state 2), not FAILED"
+[ "$(task_state 3)" = CANCELLED ] || fail "task 3 is $(task_state 3), not CANCELLED"
+[ "$(task_state 0) $(task_state 1)" = "COMPLETED COMPLETED" ] || fail "tasks 0 and 1 did not complete ($states)"
 merge_state=$(wait_job "$merge_id" 120)
-echo "study merge job $merge_id after task 3 was killed: $merge_state"
-[ "$merge_state" = CANCELLED ] || fail "the merge job ran ($merge_state) although task 3 was killed"
-[ ! -e "$results/sharded/instances.csv" ] || fail "a merged instances.csv exists although shard 3 is missing"
+echo "study merge job $merge_id after task 2 failed and task 3 was cancelled: $merge_state"
+[ "$merge_state" = CANCELLED ] || fail "the merge job ran ($merge_state) although tasks 2 and 3 did not complete"
+[ ! -e "$results/sharded/instances.csv" ] || fail "a merged instances.csv exists although shards 2 and 3 are missing"
 if refused=$(timeout "$(remaining)" "$certcyl" merge "$results/sharded" --no-plots 2>&1); then
-  fail "certcyl merge accepted the shards without shard 3: $refused"
+  fail "certcyl merge accepted the shards without shards 2 and 3: $refused"
 fi
-[[ "$refused" == *"missing shard(s) 3 of 4"* ]] || fail "certcyl merge did not name shard 3: $refused"
+[[ "$refused" == *"missing shard(s) 2, 3 of 4"* ]] || fail "certcyl merge did not name shards 2 and 3: $refused"
 echo "certcyl merge refused: $refused"
 
-rm "$killed"
-submit "${study_settings[@]}" CERTCYL_TASKS=3
+rm "$lost"
+submit "${study_settings[@]}" CERTCYL_TASKS=2,3
 states=$(wait_job "$array_id" 300)
 merge_state=$(wait_job "$merge_id" 300)
-echo "re-run of shard 3: array job $array_id $states, merge job $merge_id $merge_state"
-if [ "$states" != COMPLETED ] || [ "$merge_state" != COMPLETED ]; then fail "the re-run of shard 3 or its merge did not complete"; fi
+echo "re-run of shards 2 and 3: array job $array_id $states, merge job $merge_id $merge_state"
+if [ "$states" != "COMPLETED COMPLETED" ] || [ "$merge_state" != COMPLETED ]; then
+  fail "the re-run of shards 2 and 3 or its merge did not complete"
+fi
 bash "$source_dir/tests/slurm/compare_study.sh" "$results/unsharded" "$results/sharded" ||
   fail "the merged shards differ from the unsharded study"
 
