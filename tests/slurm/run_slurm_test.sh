@@ -8,9 +8,10 @@
 #    their own merge job, completes the study, and the merged CSV files must equal an unsharded
 #    run of the same configuration, row for row, but for the timing columns
 #    (tests/slurm/compare_study.sh).
-# 2. The cross-check, every query at 120 cases, as 3 array tasks and the merge job: the summed
-#    counts must equal an unsharded run's, line for line. Then the same submitted held and task
-#    2 cancelled before it runs: the merge job (afterany) must fail, naming the missing shard.
+# 2. The cross-check, every query at 120 cases, as 3 array tasks of 2 CPUs (so 2 threads) each
+#    and the merge job: the summed counts must equal an unsharded run's, line for line. Then the
+#    same submitted held and task 2 cancelled before it runs: the merge job (afterany) must fail,
+#    naming the missing shard.
 # Every wait has a time limit; exit 77 (skipped) when not root or Slurm is not installed.
 set -euo pipefail
 [ $# -eq 4 ] || { echo "usage: run_slurm_test.sh CERTCYL CROSSCHECK SOURCE_DIR WORK_DIR" >&2; exit 2; }
@@ -138,7 +139,7 @@ timeout "$(remaining)" "$crosscheck" --query all --cases 120 --threads 2 > "$wor
 kind=crosscheck
 crosscheck_settings=(CERTCYL_CROSSCHECK="$crosscheck" CERTCYL_OUT="$results" CERTCYL_QUERY=all CERTCYL_CASES=120 CERTCYL_SHARDS=3)
 sbatch_options=()
-submit "${crosscheck_settings[@]}" CERTCYL_NAME=crosscheck
+submit "${crosscheck_settings[@]}" CERTCYL_NAME=crosscheck CERTCYL_CPUS=2
 states=$(wait_job "$array_id" 300)
 merge_state=$(wait_job "$merge_id" 120)
 echo "cross-check array job $array_id: $states; merge job $merge_id: $merge_state"
@@ -149,6 +150,10 @@ if ! diff <(counts "$work/crosscheck-unsharded.txt") <(counts "$results/crossche
 fi
 [ "$(counts "$results/crosscheck/summary.txt" | wc -l)" -eq 3 ] || fail "the merged cross-check lacks a query"
 grep -q '^  seed 3, cases 0 to 119 in 3 shards;' "$results/crosscheck/summary.txt" || fail "the merged cylinder range is not cases 0 to 119"
+# Each task ran the driver with its SLURM_CPUS_PER_TASK threads, for each of the three queries.
+for report in "$results"/crosscheck/shard-{0,1,2}-of-3.txt; do
+  [ "$(grep -c ', 2 thread(s), ' "$report")" -eq 3 ] || fail "$report: not 2 threads for each query (CERTCYL_CPUS=2)"
+done
 
 sbatch_options=(--hold)
 submit "${crosscheck_settings[@]}" CERTCYL_NAME=crosscheck-lost
