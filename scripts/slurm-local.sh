@@ -2,7 +2,7 @@
 # A private single-node Slurm cluster on this machine, for testing the batch scripts in
 # experiments/slurm/ against a real scheduler (Debian's slurm-wlm and munge; run as root).
 #   scripts/slurm-local.sh start DIR   start munged, slurmctld and slurmd with all state in DIR
-#   scripts/slurm-local.sh stop DIR    stop the daemons started in DIR
+#   scripts/slurm-local.sh stop DIR    cancel the cluster's jobs, stop the daemons started in DIR
 # `start` writes DIR/slurm.conf and DIR/env.sh (source it: SLURM_CONF for sbatch, squeue, ...)
 # and returns once the node accepts jobs (or fails within 60 s, printing the daemons' logs).
 # Nothing outside DIR is read or written but the packages' programs: a fresh munge key, its own
