@@ -8,8 +8,8 @@
 #    their own merge job, completes the study, and the merged CSV files must equal an unsharded
 #    run of the same configuration, row for row, but for the timing columns
 #    (tests/slurm/compare_study.sh).
-# 2. The cross-check, every query at 120 cases, as 3 array tasks of 2 CPUs (so 2 threads) each
-#    and the merge job: the summed counts must equal an unsharded run's, line for line. Then the
+# 2. The cross-check, every query at 120 cases, as 3 array tasks of 2 CPUs (so 2 threads; 1 on
+#    a node of one CPU) each and the merge job: the summed counts must equal an unsharded run's, line for line. Then the
 #    same submitted held and task 2 cancelled before it runs: the merge job (afterany) must fail,
 #    naming the missing shard.
 # Every wait has a time limit; exit 77 (skipped) when not root or Slurm is not installed.
@@ -139,7 +139,9 @@ timeout "$(remaining)" "$crosscheck" --query all --cases 120 --threads 2 > "$wor
 kind=crosscheck
 crosscheck_settings=(CERTCYL_CROSSCHECK="$crosscheck" CERTCYL_OUT="$results" CERTCYL_QUERY=all CERTCYL_CASES=120 CERTCYL_SHARDS=3)
 sbatch_options=()
-submit "${crosscheck_settings[@]}" CERTCYL_NAME=crosscheck CERTCYL_CPUS=2
+cpus=$(sinfo -h -o %c | head -n 1)
+[ "$cpus" -ge 2 ] && cpus=2
+submit "${crosscheck_settings[@]}" CERTCYL_NAME=crosscheck CERTCYL_CPUS="$cpus"
 states=$(wait_job "$array_id" 300)
 merge_state=$(wait_job "$merge_id" 120)
 echo "cross-check array job $array_id: $states; merge job $merge_id: $merge_state"
@@ -152,7 +154,7 @@ fi
 grep -q '^  seed 3, cases 0 to 119 in 3 shards;' "$results/crosscheck/summary.txt" || fail "the merged cylinder range is not cases 0 to 119"
 # Each task ran the driver with its SLURM_CPUS_PER_TASK threads, for each of the three queries.
 for report in "$results"/crosscheck/shard-{0,1,2}-of-3.txt; do
-  [ "$(grep -c ', 2 thread(s), ' "$report")" -eq 3 ] || fail "$report: not 2 threads for each query (CERTCYL_CPUS=2)"
+  [ "$(grep -c ", $cpus thread(s), " "$report")" -eq 3 ] || fail "$report: not $cpus thread(s) for each query (CERTCYL_CPUS=$cpus)"
 done
 
 sbatch_options=(--hold)
