@@ -9,9 +9,9 @@
 #    run of the same configuration, row for row, but for the timing columns
 #    (tests/slurm/compare_study.sh).
 # 2. The cross-check, every query at 120 cases, as 3 array tasks of 2 CPUs (so 2 threads; 1 on
-#    a node of one CPU) each and the merge job: the summed counts must equal an unsharded run's, line for line. Then the
-#    same submitted held and task 2 cancelled before it runs: the merge job (afterany) must fail,
-#    naming the missing shard.
+#    a node of one CPU) each and the merge job: the summed counts must equal an unsharded run's,
+#    line for line. Then the same submitted held and task 2 cancelled before it runs: the merge
+#    job (afterany) must fail, naming the missing shard.
 # Every wait has a time limit; exit 77 (skipped) when not root or Slurm is not installed.
 set -euo pipefail
 [ $# -eq 4 ] || { echo "usage: run_slurm_test.sh CERTCYL CROSSCHECK SOURCE_DIR WORK_DIR" >&2; exit 2; }
