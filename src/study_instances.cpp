@@ -123,6 +123,7 @@ void write_instances(const fs::path& dir, const std::vector<Planned>& plan, cons
   for (const Planned& p : plan)
     inputs << p.inst.id << ',' << p.inst.family << ',' << to_string(p.inst.query) << ',' << p.k << ',' << to_string(p.inst.expected) << ','
            << to_string(p.inst.certified) << ',' << num(p.inst.gap_lo) << ',' << num(p.inst.gap_hi) << ',' << (p.inst.certified_ok ? 1 : 0)
+           << ',' << p.inst.stage << ',' << p.inst.certified_by << ',' << (p.inst.stage.empty() ? "" : std::to_string(p.inst.gmpfr_precision))
            << ',' << x_hex(p.inst.x) << '\n';
 }
 

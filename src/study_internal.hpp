@@ -7,6 +7,7 @@
 //   study_hunt.cpp       the worst-input hunt (hunt.csv)
 //   study_machine.cpp    the build and machine facts (machine.json)
 //   study_report.cpp     the summary tables from the CSV files, and the figures
+//   study_stages.cpp     the stages that decided the certified cylinder pairs (stages.csv)
 //   study_manifest.cpp   the results folder written aside, sealed by its manifest, renamed
 //   study_merge.cpp      the shards verified, checked against each other and merged
 //   study.cpp            `certcyl study`: the stages in order
@@ -105,9 +106,12 @@ void run_failure_maps(const StudyOptions& o, const study::Registry& registry, co
 void run_hunt(const StudyOptions& o, const study::Registry& registry, const fs::path& dir);
 // The contents of machine.json (study_machine.cpp).
 nlohmann::ordered_json machine_json(const StudyOptions& o, const std::vector<std::string>& peers);
-// summary.txt, summary.csv and summary_families.csv from dir's instances.csv and inputs.csv;
-// returns the table of summary.txt (study_report.cpp).
+// summary.txt, summary.csv, summary_families.csv and stages.csv from dir's instances.csv and
+// inputs.csv; returns the tables of summary.txt (study_report.cpp).
 std::string write_summary(const fs::path& dir);
+// stages.csv from dir's inputs.csv: how the certified answers of the cylinder pairs were
+// decided, per family; returns its table for summary.txt (study_stages.cpp).
+std::string write_stages(const fs::path& dir);
 // Runs experiments/plot_study.py on dir when wanted and possible, else says how (study_report.cpp).
 void run_plots(const fs::path& dir, bool want, std::ostream& out);
 

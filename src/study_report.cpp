@@ -1,6 +1,7 @@
 // The report of a results folder, read from its CSV files only (so a merge reports the same as
 // an unsharded run): the disagreement tables per method, per query and per family
-// (summary.txt, summary.csv, summary_families.csv), and the figures (experiments/plot_study.py).
+// (summary.txt, summary.csv, summary_families.csv), the stages that decided the certified cylinder
+// pairs (stages.csv, study_stages.cpp), and the figures (experiments/plot_study.py).
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -110,7 +111,7 @@ std::string write_summary(const fs::path& dir) {
     }
   }
   const Checks c = checks_from_inputs(dir / "inputs.csv");
-  const std::string table = summary_table(by_method, c);
+  const std::string table = summary_table(by_method, c) + '\n' + write_stages(dir);
   std::ofstream(dir / "summary.txt") << table;
   std::ofstream csv(dir / "summary.csv");
   csv << "query,method,kind,n,false_positive,false_negative,class_mismatch,undecided,error,disagreement_rate,median_ns\n";

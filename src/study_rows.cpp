@@ -12,7 +12,8 @@ using namespace certcyl::study;
 
 const char* const kRowHeader =
     "family,query,instance,k_ulps,expected,method,base,nt,kind,answer,certified_answer,outcome,gap_lo,gap_hi,ns,t_error_ulps";
-const char* const kInputsHeader = "instance,family,query,k_ulps,expected,certified_answer,gap_lo,gap_hi,gap_sign_ok,input_hex";
+const char* const kInputsHeader =
+    "instance,family,query,k_ulps,expected,certified_answer,gap_lo,gap_hi,gap_sign_ok,stage,certified_by,gmpfr_bits,input_hex";
 const char* const kHuntHeader = "method,query,start_family,evaluations,found,answer,certified_answer,outcome,gap_lo,gap_hi,input_hex";
 
 std::string num(double d) {

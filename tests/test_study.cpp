@@ -1,7 +1,8 @@
 // The robustness study: its families against their construction, the certified signed gap on
 // hand-derived cases, the judgement of answers, ulp arithmetic, the peer adapters on clear
 // cases, and a tiny study end to end (CSV schema, summary, machine facts, failure maps,
-// hunting, shards merged into the unsharded result, figures when matplotlib is installed).
+// hunting, the stages that decided the cylinder pairs, shards merged into the unsharded result,
+// figures when matplotlib is installed).
 #define BOOST_TEST_MODULE study
 #include <boost/test/unit_test.hpp>
 
@@ -229,6 +230,31 @@ BOOST_AUTO_TEST_CASE(tiny_study_end_to_end) {
   const auto hunt = lines_of(dir / "hunt.csv");
   BOOST_TEST(hunt.size() > 10u);
 
+  // stages.csv: every cylinder pair of inputs.csv counted once; each family of pairs built to
+  // touch has instances proved by the exact touching candidates or the refine stage.
+  {
+    long pairs = 0;
+    for (const auto& line : lines_of(dir / "inputs.csv")) pairs += line.find(",cylinder_cylinder,") != std::string::npos;
+    const auto stages = lines_of(dir / "stages.csv");
+    BOOST_TEST_REQUIRE(stages.size() > 1u);
+    BOOST_TEST(stages[0] == "family,stage,certified_by,gmpfr_bits,instances");
+    long counted = 0;
+    std::set<std::string> touching_or_refine;
+    for (std::size_t i = 1; i < stages.size(); ++i) {
+      std::vector<std::string> f;
+      std::stringstream ss(stages[i]);
+      for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+      BOOST_TEST_REQUIRE(f.size() == 5u, stages[i]);
+      counted += std::stol(f[4]);
+      if (f[1] == "touching_exact" || f[1] == "refine") touching_or_refine.insert(f[0]);
+    }
+    BOOST_TEST(pairs > 20);
+    BOOST_TEST(counted == pairs);
+    for (const char* family : {"c_cap_cap", "c_wall_parallel", "c_wall_crossing", "c_cap_wall", "c_rim_cap", "c_rim_wall", "c_rim_rim"})
+      BOOST_TEST(touching_or_refine.count(family) == 1u, family);
+    BOOST_TEST(out.str().find("cylinder pairs: the stage of certified_cylinder_cylinder") != std::string::npos, out.str());
+  }
+
   // Two shards merged give the unsharded rows (timings aside) and the same summary counts.
   for (int i = 0; i < 2; ++i) {
     cli::StudyOptions s = tiny(root, "sharded");
@@ -245,6 +271,7 @@ BOOST_AUTO_TEST_CASE(tiny_study_end_to_end) {
   for (std::size_t i = 0; i < rows.size(); ++i) same += without_ns(rows[i]) == without_ns(merged[i]);
   BOOST_TEST(same == rows.size());
   BOOST_TEST(lines_of(root / "sharded" / "inputs.csv") == lines_of(dir / "inputs.csv"));
+  BOOST_TEST(lines_of(root / "sharded" / "stages.csv") == lines_of(dir / "stages.csv"));
   BOOST_TEST(lines_of(root / "sharded" / "hunt.csv").size() == hunt.size());
 
   // merge refuses shards that do not belong together, naming what differs or is missing.

@@ -161,8 +161,9 @@ inline Answer answer_of_sign(const Rational& g) {
 
 }  // namespace detail
 
-// Computes inst.certified, the gap enclosure and (line queries) t_in. Sets certified_ok to
-// false when the gap's sign and the certified answer differ (a defect the study reports).
+// Computes inst.certified, the gap enclosure, (line queries) t_in and (cylinder pairs) the stage,
+// arithmetic and Gmpfr precision that decided. Sets certified_ok to false when the gap's sign
+// and the certified answer differ (a defect the study reports).
 // The cylinder pairs' gap enclosure comes from the ranked fast path (refine_gap).
 inline CylinderCylinderOptions refined_gap_options() {
   CylinderCylinderOptions o;
@@ -211,6 +212,9 @@ inline void certify(Instance& inst, const CylinderCylinderOptions& cyl_options =
     case Query::cylinder_cylinder: {
       const CylinderCylinderResult r = certified_cylinder_cylinder(cylinder_at(x, 0), cylinder_at(x, 7), cyl_options);
       inst.certified = r.answer;
+      inst.stage = to_string(r.stage);
+      inst.certified_by = to_string(r.certified_by);
+      inst.gmpfr_precision = r.gmpfr_precision;
       const CylinderGap gap = r.gap();
       if (gap.known) {
         inst.gap_lo = gap.log_lower();

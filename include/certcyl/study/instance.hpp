@@ -101,6 +101,11 @@ struct Instance {
   double gap_lo = 0, gap_hi = 0;                               // the certified signed gap
   double t_in = std::numeric_limits<double>::quiet_NaN();      // line queries: nearest double to the exact entry parameter
   bool certified_ok = false;
+  // cylinder_cylinder only (certified/cylinder_cylinder.hpp): the stage that decided (result.stage),
+  // the arithmetic of its deciding check (result.certified_by) and the highest Gmpfr precision
+  // used (result.gmpfr_precision, 0 if none); empty and 0 for the other queries.
+  std::string_view stage, certified_by;
+  long gmpfr_precision = 0;
 };
 
 // ---- Reading the primitives out of the flat coordinates ---------------------------------------
