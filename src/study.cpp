@@ -5,9 +5,11 @@
 //
 // Results folder (results/<name>/):
 //   instances.csv         one row per instance and method (tidy)
-//   inputs.csv            one row per instance: its certified answer, gap and hexfloat input
+//   inputs.csv            one row per instance: its certified answer, gap, (cylinder pairs)
+//                         the stage that decided it, and its hexfloat input
 //   summary.txt/.csv      the disagreement table per method and query (and per family in
 //                         summary_families.csv)
+//   stages.csv            per family, the stages that decided the certified cylinder pairs
 //   machine.json          compiler, flags, CPU, commit, libraries, options
 //   failure_maps/*.csv    the 2-D ulp perturbation grids, one column per method (+ *.json)
 //   hunt.csv              the worst input found per method, in hexfloats

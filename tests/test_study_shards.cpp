@@ -151,6 +151,12 @@ BOOST_AUTO_TEST_CASE(a_shard_is_sealed_by_its_manifest) {
   BOOST_TEST(lines > 10);
   BOOST_TEST(manifest["files"]["instances.csv"]["rows"] == lines - 1);
   BOOST_TEST(merge_error(copy_of_good("intact")) == "merged");
+  // A re-run into a finished shard's folder replaces it whole: a file only the old one had is gone.
+  const fs::path again = copy_of_good("again");
+  write_text(again / "shard-0-of-2" / "stray.csv", "a\n1\n");
+  run_shard("again", 0, 2);
+  BOOST_TEST(!fs::exists(again / "shard-0-of-2" / "stray.csv"));
+  BOOST_TEST(merge_error(again) == "merged");
 }
 
 BOOST_AUTO_TEST_CASE(merge_refuses_damaged_shards) {
@@ -229,10 +235,11 @@ BOOST_AUTO_TEST_CASE(merge_refuses_damaged_shards) {
 // another configuration (its hunt), so a mixture would not merge.
 BOOST_AUTO_TEST_CASE(killed_rerun_never_mixes) {
   const fs::path d = copy_of_good("rerun");
-  const std::string before = text_of(d / "shard-1-of-2" / "inputs.csv");
+  // instances.csv holds the timings: any rewrite of it would show.
+  const std::string before = text_of(d / "shard-1-of-2" / "instances.csv");
   killed_run("rerun", 1, 2, "inputs.csv");
   BOOST_TEST(fs::exists(d / ".shard-1-of-2.partial" / "inputs.csv"));
-  BOOST_TEST(text_of(d / "shard-1-of-2" / "inputs.csv") == before);
+  BOOST_TEST(text_of(d / "shard-1-of-2" / "instances.csv") == before);
   BOOST_TEST(merge_error(d) == "merged");
 }
 
@@ -248,8 +255,11 @@ BOOST_AUTO_TEST_CASE(killed_shard_detected_and_rerun) {
   e = merge_error(root / "three");
   BOOST_TEST(contains(e, "missing shard(s) 2 of 3 in "), e);
   BOOST_TEST(contains(e, "(unfinished runs left .shard-2-of-3.partial)"), e);
+  // The re-run starts clean: nothing of the killed run's folder survives into the shard.
+  write_text(root / "three" / ".shard-2-of-3.partial" / "stray.csv", "a\n1\n");
   run_shard("three", 2, 3);
   BOOST_TEST(!fs::exists(root / "three" / ".shard-2-of-3.partial"));
+  BOOST_TEST(!fs::exists(root / "three" / "shard-2-of-3" / "stray.csv"));
   BOOST_TEST(merge_error(root / "three") == "merged");
   BOOST_TEST(fs::exists(root / "three" / "manifest.json"));
   // The merged instances: every shard's, each instance once.
