@@ -9,6 +9,7 @@
 #include "certcyl/broad_phase.hpp"
 #include "certcyl/certified/cylinder_cylinder.hpp"
 #include "certcyl/certified/line_cylinder.hpp"
+#include "certcyl/certified/point_cylinder.hpp"
 #include "certcyl/certified/triangle_cylinder.hpp"
 #include "certcyl/dispatch.hpp"
 #include "certcyl/errors.hpp"

@@ -29,8 +29,10 @@
 //
 // Inputs: exact Rational primitives (the command's input) or double primitives (each double
 // is taken as the exact binary64 value it holds, so the answer is the exact one for those
-// values). Preconditions (checked by `validate` at the input boundary, not here): direction
-// != 0, p0 != p1, radius > 0, det[a b c] != 0.
+// values). Every entry point validates its operands as the command does (primitives.hpp:
+// direction != 0, p0 != p1, radius > 0, det[a b c] != 0, finite doubles) and throws
+// InvalidInput naming the operand: "line", "ray", "segment", "cylinder", "elliptic_cylinder"
+// ("cylinder.radius: must be positive, got -1").
 //
 // API
 //   certified_line_cylinder(line | ray | segment, cylinder | elliptic cylinder)
@@ -249,43 +251,79 @@ CertifiedLineResult certified_result(const LineInput<In>& in, const Solid& solid
 template <class T>
 concept CertifiedInput = std::is_same_v<T, double> || std::is_same_v<T, Rational>;
 
+// The operands' names in InvalidInput, as in the command's input.
+template <class In>
+constexpr const char* operand_name(const Line<In>&) {
+  return "line";
+}
+template <class In>
+constexpr const char* operand_name(const Ray<In>&) {
+  return "ray";
+}
+template <class In>
+constexpr const char* operand_name(const Segment<In>&) {
+  return "segment";
+}
+template <class In>
+constexpr const char* operand_name(const Cylinder<In>&) {
+  return "cylinder";
+}
+template <class In>
+constexpr const char* operand_name(const EllipticCylinder<In>&) {
+  return "elliptic_cylinder";
+}
+
+template <class LineLike, class Solid>
+void validate_line_operands(const LineLike& line, const Solid& solid) {
+  validate_operand(line, operand_name(line));
+  validate_operand(solid, operand_name(solid));
+}
+
+template <class LineLike, class Solid>
+CertifiedLineResult certified_line_query(const LineLike& line, const Solid& solid) {
+  validate_line_operands(line, solid);
+  return certified_result(line_input(line), solid);
+}
+
 }  // namespace detail
 
 // ---- The public entry points (In = Rational or double) --------------------------------------
 
 template <detail::CertifiedInput In>
 CertifiedLineResult certified_line_cylinder(const Line<In>& line, const Cylinder<In>& cyl) {
-  return detail::certified_result(detail::line_input(line), cyl);
+  return detail::certified_line_query(line, cyl);
 }
 template <detail::CertifiedInput In>
 CertifiedLineResult certified_line_cylinder(const Ray<In>& ray, const Cylinder<In>& cyl) {
-  return detail::certified_result(detail::line_input(ray), cyl);
+  return detail::certified_line_query(ray, cyl);
 }
 template <detail::CertifiedInput In>
 CertifiedLineResult certified_line_cylinder(const Segment<In>& seg, const Cylinder<In>& cyl) {
-  return detail::certified_result(detail::line_input(seg), cyl);
+  return detail::certified_line_query(seg, cyl);
 }
 template <detail::CertifiedInput In>
 CertifiedLineResult certified_line_cylinder(const Line<In>& line, const EllipticCylinder<In>& e) {
-  return detail::certified_result(detail::line_input(line), e);
+  return detail::certified_line_query(line, e);
 }
 template <detail::CertifiedInput In>
 CertifiedLineResult certified_line_cylinder(const Ray<In>& ray, const EllipticCylinder<In>& e) {
-  return detail::certified_result(detail::line_input(ray), e);
+  return detail::certified_line_query(ray, e);
 }
 template <detail::CertifiedInput In>
 CertifiedLineResult certified_line_cylinder(const Segment<In>& seg, const EllipticCylinder<In>& e) {
-  return detail::certified_result(detail::line_input(seg), e);
+  return detail::certified_line_query(seg, e);
 }
 
 // The decision alone (answer and features), accumulating the filter statistics in `counter`
 // (calls, and exact = the decisions that needed Gmpq) or, per stage, in a LineStageCounter.
 template <class LineLike, class Solid>
 detail::LineShape certified_line_cylinder_shape(const LineLike& line, const Solid& solid, FilterCounter& counter) {
+  detail::validate_line_operands(line, solid);
   return detail::certified_shape(detail::line_input(line), solid, counter);
 }
 template <class LineLike, class Solid>
 detail::LineShape certified_line_cylinder_shape(const LineLike& line, const Solid& solid, LineStageCounter& counter) {
+  detail::validate_line_operands(line, solid);
   LineStage stage{};
   const detail::LineShape shape = detail::certified_shape(detail::line_input(line), solid, stage);
   counter.count(stage);

@@ -40,9 +40,13 @@
 //   is computed (fields closest, squared_distance) for touching answers and whenever a cheap
 //   certificate is not available.
 //
+// Both entry points take Rational operands or double ones (each double taken as the exact
+// rational it denotes). They validate their operands as the command does (primitives.hpp: the
+// cylinder's radius > 0 and p0 != p1, finite doubles; any triangle is valid, degenerate ones
+// included) and throw InvalidInput naming "triangle" or "cylinder".
+//
 // Degenerate cases handled: degenerate triangles (segment, point), triangles in a cap plane,
 // edges parallel to the axis, triangles whose plane contains the axis, contact on a rim.
-// Preconditions: valid cylinder (p0 != p1, r > 0); any triangle.
 #pragma once
 
 #include <CGAL/FPU.h>
@@ -470,10 +474,14 @@ inline std::optional<CertificateData<CGAL::Mpzf>> dyadic_certificate_data(const 
 // input, Gmpq otherwise). `stages` counts the calls and the stage that decided each.
 inline Answer classify_triangle_cylinder(const Triangle<Rational>& T, const Cylinder<Rational>& C,
                                          TriangleFilterStages& stages) {
+  validate_operand(T, "triangle");
+  validate_operand(C, "cylinder");
   return detail::decide_filtered(T, C, stages).answer;
 }
 inline Answer classify_triangle_cylinder(const Triangle<double>& T, const Cylinder<double>& C,
                                          TriangleFilterStages& stages) {
+  validate_operand(T, "triangle");
+  validate_operand(C, "cylinder");
   return detail::decide_filtered(T, C, stages).answer;
 }
 
@@ -613,16 +621,13 @@ inline bool guessed_certificate(TriangleCylinderResult& res, const Triangle<doub
   return false;
 }
 
-}  // namespace detail
-
-// The answer with its exact, checked certificate. Throws std::logic_error if the filtered
-// answer and the exact construction disagree or the certificate fails its check (either would
-// be a defect of this code, never a property of the input).
-inline TriangleCylinderResult certified_triangle_cylinder(const Triangle<Rational>& T, const Cylinder<Rational>& C) {
+// The certified query on valid operands T, C; Td, Cd are the same operands as doubles when every
+// number of them is a binary64 value.
+inline TriangleCylinderResult certified_triangle(const Triangle<Rational>& T, const Cylinder<Rational>& C,
+                                                 const std::optional<Triangle<double>>& Td,
+                                                 const std::optional<Cylinder<double>>& Cd) {
   using Res = TriangleCylinderResult;
   Res res;
-  const auto Td = detail::exact_binary64(T);
-  const auto Cd = detail::exact_binary64(C);
   const detail::SlabDecision decision =
       Td && Cd ? detail::decide_filtered(*Td, *Cd, res.stages) : detail::decide_filtered(T, C, res.stages);
   res.answer = decision.answer;
@@ -648,6 +653,26 @@ inline TriangleCylinderResult certified_triangle_cylinder(const Triangle<Rationa
   if (const std::string failure = check_triangle_cylinder_certificate(res, T, C); !failure.empty())
     throw std::logic_error("triangle_cylinder: certificate check failed: " + failure);
   return res;
+}
+
+}  // namespace detail
+
+// The answer with its exact, checked certificate. Throws InvalidInput on an invalid cylinder, and
+// std::logic_error if the filtered answer and the exact construction disagree or the certificate
+// fails its check (either would be a defect of this code, never a property of the input).
+inline TriangleCylinderResult certified_triangle_cylinder(const Triangle<Rational>& T, const Cylinder<Rational>& C) {
+  validate_operand(T, "triangle");
+  validate_operand(C, "cylinder");
+  return detail::certified_triangle(T, C, detail::exact_binary64(T), detail::exact_binary64(C));
+}
+
+// The same for binary64 operands, each double taken as the exact rational it denotes; non-finite
+// numbers are an InvalidInput.
+inline TriangleCylinderResult certified_triangle_cylinder(const Triangle<double>& T, const Cylinder<double>& C) {
+  validate_operand(T, "triangle");
+  validate_operand(C, "cylinder");
+  const auto exact = [](double x) { return Rational(x); };
+  return detail::certified_triangle(T.map(exact), C.map(exact), T, C);
 }
 
 }  // namespace certcyl
