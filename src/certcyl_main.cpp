@@ -1,6 +1,7 @@
 // certcyl: certified cylinder intersection queries from the command line.
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <iostream>
 #include <thread>
 
@@ -135,7 +136,17 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 1;
   }
 
-  if (demo->parsed()) return certcyl::cli::run_demo(std::cout);
+  // A closed output is a write error with a message, not a silent death by SIGPIPE.
+  std::signal(SIGPIPE, SIG_IGN);
+  if (demo->parsed()) {
+    const int status = certcyl::cli::run_demo(std::cout);
+    std::cout.flush();
+    if (!std::cout) {
+      std::cerr << "certcyl demo: error writing standard output\n";
+      return 1;
+    }
+    return status;
+  }
   if (query->parsed()) {
     certcyl::cli::install_interrupt_handlers();
     options.nt = certcyl::parse_number_type(nt_name);
@@ -164,9 +175,15 @@ int main(int argc, char** argv) {
       std::cerr << "certcyl: " << e.what() << '\n';
       return 1;
     }
-    return std::cout ? 0 : 1;
+    std::cout.flush();
+    if (!std::cout) {
+      std::cerr << "certcyl make-scene: error writing standard output\n";
+      return 1;
+    }
+    return 0;
   }
   if (scene->parsed()) {
+    certcyl::cli::install_interrupt_handlers();
     if (scene_threads == 0) scene_threads = std::max(1u, std::thread::hardware_concurrency());
     return certcyl::cli::run_scene(scene_file, std::cout, scene_threads, scene_progress || isatty(2), scene_stats, std::cerr);
   }

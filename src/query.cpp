@@ -45,29 +45,21 @@ ojson error_line(const json& id, std::size_t line_number, const std::string& mes
   return e;
 }
 
-// A structural fault of the line itself (duplicate member, nesting too deep), raised by the
-// parser callback and reported like a syntax error.
-struct LineFault : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-// Parses one line strictly: a member name twice in one object (JSON leaves the meaning open;
-// the last would silently win) and nesting deeper than kMaxNesting are errors.
-json parse_strict(const std::string& line) {
-  std::vector<std::vector<std::string>> names;  // the member names of each open object
-  auto callback = [&](int depth, json::parse_event_t event, json& parsed) {
+// Rejects a member name twice in one object and nesting deeper than kMaxNesting while parsing.
+auto strict_callback() {
+  return [names = std::vector<std::vector<std::string>>()](int depth, json::parse_event_t event, json& parsed) mutable {
     switch (event) {
       case json::parse_event_t::object_start:
       case json::parse_event_t::array_start:
-        if (depth >= kMaxNesting)
-          throw LineFault("nested deeper than " + std::to_string(kMaxNesting) + " levels");
+        if (depth >= kMaxNesting) throw InvalidInput("", "nested deeper than " + std::to_string(kMaxNesting) + " levels");
         if (event == json::parse_event_t::object_start) names.emplace_back();
         break;
       case json::parse_event_t::object_end: names.pop_back(); break;
       case json::parse_event_t::key: {
         auto& seen = names.back();
         const auto& key = parsed.get_ref<const std::string&>();
-        if (std::find(seen.begin(), seen.end(), key) != seen.end()) throw LineFault("member \"" + key + "\" appears twice in one object");
+        if (std::find(seen.begin(), seen.end(), key) != seen.end())
+          throw InvalidInput("", "member \"" + key + "\" appears twice in one object");
         seen.push_back(key);
         break;
       }
@@ -75,7 +67,6 @@ json parse_strict(const std::string& line) {
     }
     return true;
   };
-  return json::parse(line, callback);
 }
 
 // The id of a line that is not valid JSON, when its text still shows one at the top level:
@@ -131,19 +122,22 @@ std::string non_finite_member(const ojson& j, const std::string& path) {
 
 }  // namespace
 
+json parse_strict_json(const std::string& text) { return json::parse(text, strict_callback()); }
+json parse_strict_json(std::istream& in) { return json::parse(in, strict_callback()); }
+
 ojson answer_line(const std::string& line, const QueryOptions& options, std::size_t line_number) {
   if (line.size() > kMaxLineBytes)
     return error_line(nullptr, line_number, "line longer than the limit of " + std::to_string(kMaxLineBytes) + " bytes");
   json input;
   try {
-    input = parse_strict(line);
+    input = parse_strict_json(line);
   } catch (const json::exception& e) {
     // The parser's message names the column where the line stopped being JSON ("line 1" of
     // its input, which is this one line).
     std::string what = e.what();
     if (auto at = what.find("at line 1, "); at != std::string::npos) what.erase(at, std::string("at line 1, ").size()).insert(at, "at ");
     return error_line(recover_id(line), line_number, "malformed JSON: " + what);
-  } catch (const LineFault& e) {
+  } catch (const InvalidInput& e) {
     return error_line(recover_id(line), line_number, std::string("malformed JSON: ") + e.what());
   }
   if (!input.is_object())
@@ -243,6 +237,9 @@ int run_query(std::istream& in, std::ostream& out, const QueryOptions& options, 
     {
       const InterruptibleRead reading;
       while (lines.size() < batch_size) {
+        // No more input at hand: answer what was read now (a co-process that writes a line and
+        // waits for its answer gets it; input from a file still fills whole batches).
+        if (!lines.empty() && sb->in_avail() <= 0) break;
         if (!read_line(*sb, line, kMaxLineBytes)) {
           eof = true;
           break;

@@ -46,6 +46,12 @@ struct QueryKind {
   std::map<std::string, std::vector<std::string>> method_members = {};  // members only some methods read
 };
 
+// Parses JSON strictly: a member name twice in one object (JSON leaves its meaning open; the
+// last would silently win) and nesting deeper than kMaxNesting throw InvalidInput (empty field);
+// syntax errors throw json::exception.
+json parse_strict_json(const std::string& text);
+json parse_strict_json(std::istream& in);
+
 // The members a line of `kind` may have under `method`: id, query, meta and its operands.
 std::vector<std::string> line_members(const QueryKind& kind, const std::string& method);
 

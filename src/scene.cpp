@@ -1,6 +1,9 @@
 #include "scene.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <functional>
 #include <atomic>
 #include <chrono>
 #include <fstream>
@@ -8,11 +11,13 @@
 #include <mutex>
 #include <optional>
 #include <thread>
+#include <unordered_map>
 
 #include "certcyl/broad_phase.hpp"
 #include "certcyl/certified/cylinder_cylinder.hpp"
 #include "certcyl/certified/triangle_cylinder.hpp"
 #include "certcyl/io/json_input.hpp"
+#include "interrupt.hpp"
 #include "query_cylinder.hpp"
 #include "query_support.hpp"
 #include "query_triangle.hpp"
@@ -29,6 +34,12 @@ std::string name_of(const json& entry, const std::string& field) {
   return it->get<std::string>();
 }
 
+// The path of solid k of the scene ("cylinders[3]", "triangles[0]"), cylinders first.
+std::string solid_field(const std::vector<SceneSolid>& solids, std::size_t k) {
+  const std::size_t cylinders = static_cast<std::size_t>(std::count_if(solids.begin(), solids.end(), [](const SceneSolid& s) { return s.is_cylinder; }));
+  return k < cylinders ? index_field("cylinders", k) : index_field("triangles", k - cylinders);
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -38,7 +49,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 std::vector<SceneSolid> read_scene(const json& scene) {
   if (!scene.is_object()) throw InvalidInput("", "a scene is a JSON object with \"cylinders\" and optionally \"triangles\"");
   for (auto it = scene.begin(); it != scene.end(); ++it)
-    if (it.key() != "cylinders" && it.key() != "triangles") throw InvalidInput(it.key(), "unexpected member");
+    if (it.key() != "cylinders" && it.key() != "triangles")
+      throw InvalidInput(it.key(), "unexpected member (a scene has \"cylinders\" and \"triangles\")");
   JsonReader reader;
   std::vector<SceneSolid> solids;
   if (auto cyls = scene.find("cylinders"); cyls != scene.end()) {
@@ -50,7 +62,14 @@ std::vector<SceneSolid> read_scene(const json& scene) {
       if (!entry.is_object()) throw InvalidInput(field, "expected an object");
       json operand = entry;
       operand.erase("name");
-      solids.push_back({name_of(entry, field), true, reader.cylinder(operand, field), {}});
+      try {
+        solids.push_back({name_of(entry, field), true, reader.cylinder(operand, field), {}});
+      } catch (const InvalidInput& e) {
+        // The cylinder reader lists its own members; a scene entry may also have a name.
+        const std::string what = e.what();
+        if (what.find("unexpected member") == std::string::npos && what.find("expected a cylinder") == std::string::npos) throw;
+        throw InvalidInput("", what + "; a scene entry may also have \"name\"");
+      }
     }
   }
   if (auto tris = scene.find("triangles"); tris != scene.end()) {
@@ -60,10 +79,18 @@ std::vector<SceneSolid> read_scene(const json& scene) {
       const json& entry = (*tris)[i];
       if (!entry.is_object()) throw InvalidInput(field, "expected an object {\"name\": ..., \"vertices\": [P, P, P]}");
       for (auto it = entry.begin(); it != entry.end(); ++it)
-        if (it.key() != "name" && it.key() != "vertices") throw InvalidInput(join_field(field, it.key()), "unexpected member");
+        if (it.key() != "name" && it.key() != "vertices")
+          throw InvalidInput(join_field(field, it.key()), "unexpected member (a triangle has \"name\" and \"vertices\")");
       solids.push_back({name_of(entry, field), false, {},
                         reader.triangle(JsonReader::member(entry, field, "vertices"), join_field(field, "vertices"))});
     }
+  }
+  // Names identify the pairs in the output: they must be distinct.
+  std::unordered_map<std::string, std::size_t> first;
+  for (std::size_t k = 0; k < solids.size(); ++k) {
+    const auto [it, fresh] = first.emplace(solids[k].name, k);
+    if (!fresh)
+      throw InvalidInput(solid_field(solids, k), "name \"" + solids[k].name + "\" is also the name of " + solid_field(solids, it->second));
   }
   return solids;
 }
@@ -76,36 +103,27 @@ nlohmann::ordered_json SceneStats::to_json() const {
           {"touching", touching},
           {"overlapping", overlapping},
           {"undecided", undecided},
+          {"max_pairs_held", max_pairs_held},
           {"threads", threads},
           {"seconds", {{"read", read_s}, {"boxes", boxes_s}, {"broad", broad_s}, {"narrow", narrow_s}, {"write", write_s}}},
           {"narrow_thread_seconds", {{"query", query_thread_s}, {"format", format_thread_s}}}};
 }
 
-std::vector<std::string> meeting_pairs(const std::vector<SceneSolid>& solids, unsigned threads, bool progress, SceneStats& stats) {
+namespace {
+
+// Thrown through the broad phase's callback to end a scan early.
+struct ScanStopped {
+  int status;
+};
+
+// The narrow phase on one chunk of candidate pairs: the certified query on each, on `threads`
+// threads; the JSON line of each meeting pair (empty for a separated one), in chunk order.
+std::vector<std::string> narrow_phase(const std::vector<SceneSolid>& solids, const std::vector<std::pair<std::size_t, std::size_t>>& pairs,
+                                      unsigned threads, std::atomic<std::size_t>& done, SceneStats& stats) {
   using clock = std::chrono::steady_clock;
-  threads = std::max(1u, threads);
-  stats.threads = threads;
-  stats.cylinders = static_cast<std::size_t>(std::count_if(solids.begin(), solids.end(), [](const SceneSolid& s) { return s.is_cylinder; }));
-  stats.triangles = solids.size() - stats.cylinders;
-
-  auto t = clock::now();
-  std::vector<Box3> boxes;
-  boxes.reserve(solids.size());
-  for (const SceneSolid& s : solids) boxes.push_back(s.is_cylinder ? bounding_box(s.cylinder) : bounding_box(s.triangle));
-  stats.boxes_s = seconds_since(t);
-
-  t = clock::now();
-  auto pairs = candidate_pairs(boxes);
-  // Triangle-triangle pairs are not a cylinder query.
-  std::erase_if(pairs, [&](const auto& p) { return !solids[p.first].is_cylinder && !solids[p.second].is_cylinder; });
-  stats.broad_s = seconds_since(t);
-  stats.candidate_pairs = pairs.size();
-
-  t = clock::now();
   std::vector<std::string> lines(pairs.size());
-  std::atomic<std::size_t> next{0}, done{0};
-  std::atomic<std::size_t> touching{0}, overlapping{0}, undecided{0};
-  std::mutex time_mutex;
+  std::atomic<std::size_t> next{0};
+  std::mutex mutex;
   auto work = [&] {
     double query_s = 0, format_s = 0;
     std::size_t n_touching = 0, n_overlapping = 0, n_undecided = 0;
@@ -139,31 +157,93 @@ std::vector<std::string> meeting_pairs(const std::vector<SceneSolid>& solids, un
       format_s += seconds_since(q1);
       ++done;
     }
-    touching += n_touching, overlapping += n_overlapping, undecided += n_undecided;
-    std::lock_guard lock(time_mutex);
+    std::lock_guard lock(mutex);
+    stats.touching += n_touching, stats.overlapping += n_overlapping, stats.undecided += n_undecided;
     stats.query_thread_s += query_s;
     stats.format_thread_s += format_s;
   };
   std::vector<std::thread> pool;
-  for (unsigned i = 1; i < threads; ++i) pool.emplace_back(work);
-  if (progress) {
-    std::thread reporter([&] {
-      while (done < pairs.size()) {
-        std::cerr << "\rcertcyl scene: " << done << "/" << pairs.size() << " candidate pairs" << std::flush;
+  for (unsigned i = 1; i < threads && i < pairs.size(); ++i) pool.emplace_back(work);
+  work();
+  for (auto& th : pool) th.join();
+  return lines;
+}
+
+}  // namespace
+
+int stream_meeting_pairs(const std::vector<SceneSolid>& solids, unsigned threads, bool progress, SceneStats& stats,
+                         const std::function<bool(const std::string&)>& write, std::size_t chunk_size) {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  threads = std::max(1u, threads);
+  chunk_size = std::max<std::size_t>(1, chunk_size);
+  stats.threads = threads;
+  stats.cylinders = static_cast<std::size_t>(std::count_if(solids.begin(), solids.end(), [](const SceneSolid& s) { return s.is_cylinder; }));
+  stats.triangles = solids.size() - stats.cylinders;
+
+  auto t = clock::now();
+  std::vector<Box3> boxes;
+  boxes.reserve(solids.size());
+  for (const SceneSolid& s : solids) boxes.push_back(s.is_cylinder ? bounding_box(s.cylinder) : bounding_box(s.triangle));
+  stats.boxes_s = seconds_since(t);
+
+  std::atomic<std::size_t> done{0};
+  std::atomic<bool> finished{false};
+  std::thread reporter;
+  if (progress)
+    reporter = std::thread([&] {
+      while (!finished) {
+        std::cerr << "\rcertcyl scene: " << done << " candidate pairs examined" << std::flush;
         std::this_thread::sleep_for(std::chrono::milliseconds(500));
       }
     });
-    work();
-    for (auto& th : pool) th.join();
-    reporter.join();
-    std::cerr << "\rcertcyl scene: " << pairs.size() << "/" << pairs.size() << " candidate pairs\n";
-  } else {
-    work();
-    for (auto& th : pool) th.join();
+  std::vector<std::pair<std::size_t, std::size_t>> chunk;
+  chunk.reserve(chunk_size);
+  double narrow_s = 0, write_s = 0;
+  auto flush = [&] {
+    stats.max_pairs_held = std::max(stats.max_pairs_held, chunk.size());
+    auto n0 = clock::now();
+    const std::vector<std::string> lines = narrow_phase(solids, chunk, threads, done, stats);
+    auto w0 = clock::now();
+    narrow_s += std::chrono::duration<double>(w0 - n0).count();
+    for (const std::string& l : lines)
+      if (!l.empty() && !write(l)) throw ScanStopped{1};
+    write_s += seconds_since(w0);
+    chunk.clear();
+    // A signal ends the scan here, between chunks: every line of the pairs examined is out.
+    if (const int sig = interrupt_signal()) throw ScanStopped{128 + sig};
+  };
+  int status = 0;
+  try {
+    for_each_candidate_pair(boxes, [&](std::size_t i, std::size_t j) {
+      // Triangle-triangle pairs are not a cylinder query.
+      if (!solids[i].is_cylinder && !solids[j].is_cylinder) return;
+      ++stats.candidate_pairs;
+      chunk.emplace_back(i, j);
+      if (chunk.size() == chunk_size) flush();
+    });
+    flush();
+  } catch (const ScanStopped& stop) {
+    status = stop.status;
   }
-  stats.narrow_s = seconds_since(t);
-  stats.touching = touching, stats.overlapping = overlapping, stats.undecided = undecided;
-  stats.separated = pairs.size() - stats.touching - stats.overlapping - stats.undecided;
+  finished = true;
+  if (reporter.joinable()) {
+    reporter.join();
+    std::cerr << "\rcertcyl scene: " << done << " candidate pairs examined\n";
+  }
+  stats.narrow_s = narrow_s;
+  stats.write_s = write_s;
+  stats.broad_s = std::max(0.0, seconds_since(start) - stats.boxes_s - narrow_s - write_s);
+  stats.separated = done - stats.touching - stats.overlapping - stats.undecided;
+  return status;
+}
+
+std::vector<std::string> meeting_pairs(const std::vector<SceneSolid>& solids, unsigned threads, bool progress, SceneStats& stats) {
+  std::vector<std::string> lines;
+  stream_meeting_pairs(solids, threads, progress, stats, [&](const std::string& l) {
+    lines.push_back(l);
+    return true;
+  });
   return lines;
 }
 
@@ -176,39 +256,51 @@ int run_scene(const std::string& path, std::ostream& out, unsigned threads, bool
   auto t = clock::now();
   std::ifstream file(path);
   if (!file) {
-    err << "certcyl scene: cannot open '" << path << "'\n";
+    err << "certcyl scene: cannot open '" << path << "': " << std::strerror(errno) << "\n";
     return 1;
   }
   std::vector<SceneSolid> solids;
   try {
-    solids = read_scene(json::parse(file));
+    solids = read_scene(parse_strict_json(file));
   } catch (const json::exception& e) {
     err << "certcyl scene: " << path << ": malformed JSON: " << e.what() << "\n";
     return 2;
   } catch (const InvalidInput& e) {
     err << "certcyl scene: " << path << ": " << e.what() << "\n";
     return 2;
+  } catch (const std::bad_alloc&) {
+    err << "certcyl scene: " << path << ": out of memory reading the scene\n";
+    return 1;
+  }
+  if (file.bad()) {
+    err << "certcyl scene: " << path << ": read error\n";
+    return 1;
   }
   SceneStats stats;
   stats.read_s = seconds_since(t);
 
-  const std::vector<std::string> lines = meeting_pairs(solids, threads, progress, stats);
-
-  t = clock::now();
-  for (const auto& l : lines)
-    if (!l.empty()) out << l << '\n';
+  int status = 0;
+  try {
+    status = stream_meeting_pairs(solids, threads, progress, stats, [&](const std::string& l) {
+      out << l << '\n';
+      return static_cast<bool>(out);
+    });
+  } catch (const std::bad_alloc&) {
+    out.flush();
+    err << "certcyl scene: out of memory in the narrow phase\n";
+    return 1;
+  }
   out.flush();
-  stats.write_s = seconds_since(t);
-  err << "certcyl scene: " << stats.cylinders << " cylinders, " << stats.triangles << " triangles, " << stats.candidate_pairs
-      << " candidate pairs: " << stats.touching << " touching, " << stats.overlapping << " overlapping, " << stats.undecided
-      << " undecided; read " << stats.read_s << " s, broad phase " << stats.boxes_s + stats.broad_s << " s, narrow phase " << stats.narrow_s
-      << " s\n";
-  if (want_stats) err << "certcyl scene stats: " << stats.to_json().dump() << '\n';
   if (!out) {
     err << "certcyl scene: error writing standard output\n";
     return 1;
   }
-  return 0;
+  err << "certcyl scene: " << stats.cylinders << " cylinders, " << stats.triangles << " triangles, " << stats.candidate_pairs
+      << " candidate pairs: " << stats.touching << " touching, " << stats.overlapping << " overlapping, " << stats.undecided
+      << " undecided; read " << stats.read_s << " s, broad phase " << stats.boxes_s + stats.broad_s << " s, narrow phase " << stats.narrow_s
+      << " s" << (status > 128 ? " (interrupted: the pairs examined so far)" : "") << "\n";
+  if (want_stats) err << "certcyl scene stats: " << stats.to_json().dump() << '\n';
+  return status;
 }
 
 }  // namespace certcyl::cli

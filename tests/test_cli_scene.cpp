@@ -73,15 +73,16 @@ BOOST_AUTO_TEST_CASE(stats_count_the_pairs_worked_out_by_hand) {
     BOOST_TEST(s["threads"] == threads);
     for (const char* phase : {"read", "boxes", "broad", "narrow", "write"}) BOOST_TEST(s["seconds"][phase].get<double>() >= 0.0);
     const auto lines = json_lines(out.str());
-    const std::vector<std::array<std::string, 3>> expected{{"a", "b", "touching"},   {"a", "x", "overlapping"}, {"a", "t", "touching"},
-                                                           {"b", "x", "overlapping"}, {"b", "t", "touching"},   {"near", "t", "touching"}};
-    BOOST_TEST_REQUIRE(lines.size() == expected.size());
-    for (std::size_t i = 0; i < expected.size(); ++i) {
-      BOOST_TEST(lines[i]["a"] == expected[i][0]);
-      BOOST_TEST(lines[i]["b"] == expected[i][1]);
-      BOOST_TEST(lines[i]["answer"] == expected[i][2]);
-      BOOST_TEST(lines[i]["certified"] == true);
+    // The lines come in the broad phase's order; as a set they are the pairs worked out above.
+    const std::set<std::array<std::string, 3>> expected{{"a", "b", "touching"},   {"a", "x", "overlapping"}, {"a", "t", "touching"},
+                                                        {"b", "x", "overlapping"}, {"b", "t", "touching"},   {"near", "t", "touching"}};
+    std::set<std::array<std::string, 3>> found;
+    for (const json& l : lines) {
+      found.insert({l["a"].get<std::string>(), l["b"].get<std::string>(), l["answer"].get<std::string>()});
+      BOOST_TEST(l["certified"] == true);
     }
+    BOOST_TEST(lines.size() == expected.size());
+    BOOST_TEST((found == expected));
   }
   // Without --stats, only the one-line summary.
   std::ostringstream out, err;
@@ -142,4 +143,96 @@ BOOST_AUTO_TEST_CASE(generated_scene_against_construction_and_all_pairs) {
   meeting_pairs(solids, 1, false, stats);
   BOOST_TEST(stats.candidate_pairs > 900u);
   BOOST_TEST(stats.overlapping > 100u);
+}
+
+namespace {
+
+std::vector<SceneSolid> identical_cylinders(std::size_t n) {
+  json cyls = json::array();
+  for (std::size_t i = 0; i < n; ++i)
+    cyls.push_back({{"name", std::string("c").append(std::to_string(i))}, {"p0", {0, 0, 0}}, {"p1", {0, 0, 1}}, {"radius", 1}});
+  return read_scene(json{{"cylinders", cyls}});
+}
+
+}  // namespace
+
+// The scan streams: at most one chunk of pairs is held, whatever the number of pairs, and every
+// pair is written exactly once, in the same order for every chunk size and thread count.
+BOOST_AUTO_TEST_CASE(streaming_holds_one_chunk) {
+  const std::vector<SceneSolid> solids = identical_cylinders(120);  // 7,140 pairs, all overlapping
+  std::vector<std::string> reference;
+  for (const std::size_t chunk : {std::size_t{1000}, std::size_t{7}, kSceneChunk}) {
+    for (unsigned threads : {1u, 2u}) {
+      SceneStats stats;
+      std::vector<std::string> lines;
+      const int status = stream_meeting_pairs(solids, threads, false, stats, [&](const std::string& l) {
+        lines.push_back(l);
+        return true;
+      }, chunk);
+      BOOST_TEST_CONTEXT("chunk " << chunk << ", " << threads << " threads") {
+        BOOST_TEST(status == 0);
+        BOOST_TEST(stats.candidate_pairs == 7140u);
+        BOOST_TEST(stats.overlapping == 7140u);
+        BOOST_TEST(stats.max_pairs_held == std::min<std::size_t>(chunk, 7140));
+        BOOST_TEST(lines.size() == 7140u);
+        std::set<std::pair<std::string, std::string>> distinct;
+        for (const std::string& l : lines) {
+          const json j = json::parse(l);
+          BOOST_TEST(j["answer"] == "overlapping");
+          const std::string a = j["a"], b = j["b"];
+          BOOST_TEST(std::stoi(a.substr(1)) < std::stoi(b.substr(1)));  // a before b in the scene
+          distinct.emplace(a, b);
+        }
+        BOOST_TEST(distinct.size() == 7140u);
+        if (reference.empty()) reference = lines;
+        BOOST_TEST((lines == reference));
+      }
+    }
+  }
+}
+
+// A write that fails stops the scan with status 1 after the failing line: nothing more is
+// computed for output that cannot be written.
+BOOST_AUTO_TEST_CASE(a_failed_write_stops_the_scan) {
+  const std::vector<SceneSolid> solids = identical_cylinders(40);
+  SceneStats stats;
+  std::size_t written = 0;
+  const int status = stream_meeting_pairs(solids, 1, false, stats, [&](const std::string&) { return ++written < 5; }, 10);
+  BOOST_TEST(status == 1);
+  BOOST_TEST(written == 5u);
+  BOOST_TEST(stats.candidate_pairs < 780u);
+}
+
+BOOST_AUTO_TEST_CASE(scene_names_are_distinct) {
+  const json twice = json::parse(R"({"cylinders": [
+      {"name": "a", "p0": [0,0,0], "p1": [0,0,2], "radius": 1},
+      {"name": "b", "p0": [2,0,0], "p1": [2,0,2], "radius": 1}],
+      "triangles": [{"name": "a", "vertices": [[0,0,2],[5,0,2],[0,5,2]]}]})");
+  try {
+    read_scene(twice);
+    BOOST_FAIL("a duplicate name was accepted");
+  } catch (const InvalidInput& e) {
+    BOOST_TEST(std::string(e.what()) == "triangles[0]: name \"a\" is also the name of cylinders[0]");
+  }
+  // A default name (the entry's path) can clash with a given one too.
+  const json clash = json::parse(R"({"cylinders": [
+      {"p0": [0,0,0], "p1": [0,0,2], "radius": 1},
+      {"name": "cylinders[0]", "p0": [2,0,0], "p1": [2,0,2], "radius": 1}]})");
+  BOOST_CHECK_THROW(read_scene(clash), InvalidInput);
+}
+
+BOOST_AUTO_TEST_CASE(misspelt_scene_members_are_named_with_the_valid_ones) {
+  try {
+    read_scene(json::parse(R"({"cylinders": [{"nme": "a", "p0": [0,0,0], "p1": [0,0,2], "radius": 1}]})"));
+    BOOST_FAIL("a misspelt member was accepted");
+  } catch (const InvalidInput& e) {
+    BOOST_TEST(std::string(e.what()) ==
+               "cylinders[0].nme: unexpected member (endpoint form: p0, p1, radius); a scene entry may also have \"name\"");
+  }
+  try {
+    read_scene(json::parse(R"({"cylinders": [], "triangle": []})"));
+    BOOST_FAIL("a misspelt member was accepted");
+  } catch (const InvalidInput& e) {
+    BOOST_TEST(std::string(e.what()) == "triangle: unexpected member (a scene has \"cylinders\" and \"triangles\")");
+  }
 }

@@ -192,3 +192,26 @@ BOOST_AUTO_TEST_CASE(irrational_tangency_overlaps) {
   certcyl::detail::rim_wall_normals(pair, rim_wall);
   for (const Vec3<Q>& D : rim_wall) BOOST_TEST(!certcyl::detail::prove_touching(pair, D).has_value());
 }
+
+BOOST_AUTO_TEST_CASE(squarefree_filter_modulo_a_prime) {
+  using certcyl::Rational;
+  using certcyl::detail::RationalPolynomial;
+  using certcyl::detail::squarefree_mod_p;
+  using certcyl::detail::operator*;
+  const auto linear = [](const Rational& root) { return RationalPolynomial{-root, Rational(1)}; };
+  // Distinct roots: proved squarefree; a double root, rational or not: never.
+  BOOST_TEST(squarefree_mod_p(linear(1) * linear(2) * linear(Rational(-3, 7)) * linear(Rational(5, 11))));
+  BOOST_TEST(!squarefree_mod_p(linear(Rational(1, 3)) * linear(Rational(1, 3)) * linear(2)));
+  const RationalPolynomial t2_minus_2{Rational(-2), Rational(0), Rational(1)};
+  BOOST_TEST(squarefree_mod_p(t2_minus_2 * linear(Rational(10, 9))));
+  BOOST_TEST(!squarefree_mod_p(t2_minus_2 * t2_minus_2));
+  // Roots that differ by p = 2^32 - 5 coincide modulo p: not proved (the exact gcd decides).
+  BOOST_TEST(!squarefree_mod_p(linear(0) * linear(Rational(4294967291.0))));
+  // A denominator divisible by p: the reduction is undefined, nothing is proved.
+  BOOST_TEST(!squarefree_mod_p(linear(Rational(1) / Rational(4294967291.0)) * linear(3)));
+  // Large coefficients, distinct roots 10^600 apart from 1: proved.
+  Rational big(1);
+  for (int i = 0; i < 600; ++i) big = big * 10;
+  BOOST_TEST(squarefree_mod_p(linear(big + Rational(1, 3)) * linear(Rational(1, 3)) * linear(-big)));
+  BOOST_TEST(!squarefree_mod_p(linear(big + Rational(1, 3)) * linear(big + Rational(1, 3))));
+}

@@ -6,9 +6,10 @@
 // extent around the axis segment along coordinate i is r sqrt(A_j^2 + A_k^2) / |A| ({i,j,k} a
 // permutation), the half-width of the rim circles' shadow on that coordinate.
 //
-// `candidate_pairs` runs CGAL::box_self_intersection_d on closed boxes, so two solids that
-// merely touch are never dropped: every pair of solids that share a point is reported (and
-// more; the narrow phase decides).
+// `for_each_candidate_pair` (streaming) and `candidate_pairs` (all, sorted) run
+// CGAL::box_self_intersection_d on closed boxes, so two solids that merely touch are never
+// dropped: every pair of solids that share a point is reported (and more; the narrow phase
+// decides).
 #pragma once
 
 #include <CGAL/Box_intersection_d/Box_with_handle_d.h>
@@ -61,23 +62,31 @@ inline Box3 bounding_box(const Triangle<Rational>& t) {
   return box;
 }
 
-// Index pairs (i < j) of boxes that intersect as closed boxes, sorted.
-inline std::vector<std::pair<std::size_t, std::size_t>> candidate_pairs(const std::vector<Box3>& boxes) {
+// Calls report(i, j), i < j, once for each pair of boxes that intersect as closed boxes, in the
+// order CGAL's algorithm finds them (deterministic: its random splits use a fixed seed). Memory
+// is linear in the number of boxes, whatever the number of pairs.
+template <class Report>
+void for_each_candidate_pair(const std::vector<Box3>& boxes, Report&& report) {
   using CgalBox = CGAL::Box_intersection_d::Box_d<double, 3, CGAL::Box_intersection_d::ID_EXPLICIT>;
   std::vector<CgalBox> cgal_boxes;
   cgal_boxes.reserve(boxes.size());
   for (Box3 b : boxes) cgal_boxes.emplace_back(b.lo.data(), b.hi.data());
   // ID_EXPLICIT numbers the boxes in construction order; map ids back to indices.
   const std::size_t first_id = cgal_boxes.empty() ? 0 : cgal_boxes.front().id();
-  std::vector<std::pair<std::size_t, std::size_t>> pairs;
   CGAL::box_self_intersection_d(
       cgal_boxes.begin(), cgal_boxes.end(),
       [&](const CgalBox& a, const CgalBox& b) {
         std::size_t i = a.id() - first_id, j = b.id() - first_id;
         if (i > j) std::swap(i, j);
-        pairs.emplace_back(i, j);
+        report(i, j);
       },
       std::ptrdiff_t(10), CGAL::Box_intersection_d::CLOSED);
+}
+
+// Index pairs (i < j) of boxes that intersect as closed boxes, sorted.
+inline std::vector<std::pair<std::size_t, std::size_t>> candidate_pairs(const std::vector<Box3>& boxes) {
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for_each_candidate_pair(boxes, [&](std::size_t i, std::size_t j) { pairs.emplace_back(i, j); });
   std::sort(pairs.begin(), pairs.end());
   return pairs;
 }

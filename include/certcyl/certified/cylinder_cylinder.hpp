@@ -291,6 +291,29 @@ inline std::pair<Point3<double>, Point3<double>> closest_segment_points(const Po
   return {a0 + s * e0, a1 + t * e1};
 }
 
+// Closest points of the segments [a0, a0 + e0] and [a1, a1 + e1], exactly: the parameters are
+// clamped in turn (s on the line-line optimum, t for that s, s again for that t), which gives a
+// pair of closest points of two segments; for parallel segments (a c = b^2), s is the middle of
+// the overlap of their parameter ranges on segment 0, so the points stay away from the caps.
+inline std::pair<Point3<Rational>, Point3<Rational>> exact_closest_segment_points(const Point3<Rational>& a0, const Vec3<Rational>& e0,
+                                                                                   const Point3<Rational>& a1, const Vec3<Rational>& e1) {
+  const auto clamp01 = [](const Rational& x) { return x < 0 ? Rational(0) : (x > 1 ? Rational(1) : x); };
+  const Vec3<Rational> w = a0 - a1;
+  const Rational a = dot(e0, e0), b = dot(e0, e1), c = dot(e1, e1), d = dot(e0, w), e = dot(e1, w);
+  const Rational den = a * c - b * b;
+  Rational s;
+  if (den != 0) {
+    s = clamp01((b * e - c * d) / den);
+  } else {
+    Rational t0 = -d / a, t1 = (b - d) / a;
+    if (t1 < t0) std::swap(t0, t1);
+    s = clamp01((std::max(t0, Rational(0)) + std::min(t1, Rational(1))) / 2);
+  }
+  const Rational t = clamp01((b * s + e) / c);
+  s = clamp01((b * t - d) / a);
+  return {a0 + s * e0, a1 + t * e1};
+}
+
 // The lower bound 1 / sigma of phi* from an upper bound sigma_upper of a point's scale sigma
 // (1 / phi* is the least scale), rounded down: fl(rho' fl(1 / s)) <= rho' (1 + u)^2 / s <= 1 / s.
 // 0 (no bound) unless sigma_upper is positive and finite.
@@ -1100,7 +1123,13 @@ class CylinderCylinderSolver {
 
   // Exact candidates, before any Gmpfr round: the midpoints m0, m1 as witnesses (each is interior
   // to its own cylinder; in double they may be rounded off a needle's axis), and the directions
-  // T, its parts orthogonal to each axis, A0, A1 and A0 x A1, in Gmpq.
+  // T, its parts orthogonal to each axis, A0, A1 and A0 x A1, in Gmpq; then the exact closest
+  // points c0, c1 of the axis segments: their r0:r1 division point and midpoint as witnesses and
+  // c1 - c0 as a direction. These decide every pair whose contact is between the walls away from
+  // the caps at any distance from touching: with c0, c1 interior to the axis segments and
+  // d = |c1 - c0|, the r0:r1 point is at distance r0 d / (r0 + r1) < r0 from axis 0 and
+  // r1 d / (r0 + r1) < r1 from axis 1 when d < r0 + r1, and c1 - c0, orthogonal to both axes,
+  // separates when d > r0 + r1.
   bool exact_candidates() {
     const CylinderPair<Rational>& e = exact();
     if (!(e.T.x == 0 && e.T.y == 0 && e.T.z == 0) && exact_separates(e.T)) return true;
@@ -1108,6 +1137,11 @@ class CylinderCylinderSolver {
       if (!(D.x == 0 && D.y == 0 && D.z == 0) && exact_separates(D)) return true;
     for (const Cylinder<Rational>* c : {&e.c0, &e.c1})
       if (exact_overlaps(c->p0 + (c->p1 - c->p0) / Rational(2))) return true;
+    const auto [c0, c1] = exact_closest_segment_points(e.c0.p0, e.A0, e.c1.p0, e.A1);
+    const Vec3<Rational> between = c1 - c0;
+    if (!(between.x == 0 && between.y == 0 && between.z == 0) && exact_separates(between)) return true;
+    const Rational share = e.c0.radius / (e.c0.radius + e.c1.radius);
+    if (exact_overlaps(c0 + share * between) || exact_overlaps(c0 + between / Rational(2))) return true;
     return end_disc_witness(0) || end_disc_witness(1);
   }
 

@@ -51,6 +51,9 @@
 // S = squarefree(gcd(F, F')), of degree at most 2 (a quartic has at most two multiple roots);
 // only rational roots can be contacts (theorem), and they give the candidates P + t* W. Degree:
 // the coefficients of F are of degree 8 in P, W and 4 in the squared radii over A.A; all in Gmpq.
+// Euclid's algorithm on such coefficients grows them quickly (seconds for operands of thousands
+// of digits), so F is first reduced modulo a prime p: when F mod p and its derivative are coprime,
+// F has no multiple root (squarefree_mod_p) and the exact gcd is skipped.
 #pragma once
 
 #include <CGAL/Gmpq.h>
@@ -58,6 +61,7 @@
 #include <gmp.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -129,6 +133,51 @@ inline std::pair<RationalPolynomial, RationalPolynomial> divide(RationalPolynomi
   return {trimmed(std::move(q)), std::move(f)};
 }
 
+// True when f is proved squarefree (no multiple root, over the complex numbers) by reduction
+// modulo the prime p = 2^32 - 5: each coefficient n/d with p not dividing d maps to n d^-1 mod p
+// (a ring homomorphism from the rationals with such denominators onto Z/p). If p divides no
+// denominator nor the leading coefficient, and gcd(f mod p, (f mod p)') is a constant, then f is
+// squarefree: a factor h of f and f' of degree >= 1, taken primitive over the p-adic integers
+// (Gauss's lemma), has a leading coefficient dividing lc(f), so h mod p keeps its degree and
+// divides both reductions. False proves nothing (the exact gcd decides).
+inline bool squarefree_mod_p(const RationalPolynomial& f) {
+  constexpr std::uint64_t p = 4294967291u;
+  if (f.size() < 2) return f.size() == 1;
+  const auto power = [&](std::uint64_t b, std::uint64_t e) {
+    std::uint64_t r = 1;
+    for (b %= p; e; e >>= 1, b = b * b % p)
+      if (e & 1) r = r * b % p;
+    return r;
+  };
+  std::vector<std::uint64_t> g;  // f mod p, lowest degree first
+  for (const Rational& c : f) {
+    const std::uint64_t d = mpz_fdiv_ui(mpq_denref(c.mpq()), p);
+    if (d == 0) return false;
+    g.push_back(mpz_fdiv_ui(mpq_numref(c.mpq()), p) * power(d, p - 2) % p);
+  }
+  if (g.back() == 0) return false;
+  std::vector<std::uint64_t> h;  // the derivative
+  for (std::size_t i = 1; i < g.size(); ++i) h.push_back(g[i] * i % p);
+  const auto trim = [](std::vector<std::uint64_t>& v) {
+    while (!v.empty() && v.back() == 0) v.pop_back();
+  };
+  trim(h);
+  // Euclid over Z/p: a remainder sequence ending in a nonzero constant means coprime.
+  while (!h.empty()) {
+    const std::uint64_t inv = power(h.back(), p - 2);
+    while (g.size() >= h.size()) {
+      const std::uint64_t c = g.back() * inv % p;
+      const std::size_t shift = g.size() - h.size();
+      for (std::size_t i = 0; i < h.size(); ++i) g[shift + i] = (g[shift + i] + (p - c) * h[i]) % p;
+      g.pop_back();
+      trim(g);
+      if (g.empty()) break;
+    }
+    std::swap(g, h);
+  }
+  return g.size() == 1;
+}
+
 // The monic greatest common divisor (Euclid's algorithm, exact); empty when f = g = 0.
 inline RationalPolynomial gcd(RationalPolynomial f, RationalPolynomial g) {
   while (!g.empty()) {
@@ -182,6 +231,7 @@ inline void rim_wall_normals(const CylinderPair<Rational>& d, std::vector<Vec3<R
       const RationalPolynomial e = m * m - pi - pj;
       const RationalPolynomial F = e * e - four_pi_pj;
       if (F.empty()) continue;  // sigma l = 1 and p_i = p_j: no contact for this sigma (header comment)
+      if (squarefree_mod_p(F)) continue;  // no double root
       const RationalPolynomial H = gcd(F, derivative(F));
       if (H.size() < 2) continue;  // no double root
       const RationalPolynomial S = divide(H, gcd(H, derivative(H))).first;

@@ -1,0 +1,173 @@
+#!/usr/bin/env bash
+# The command under faults (ctest label 'faults'): signals, closed and full outputs, hostile
+# input, pathological scenes. Each case asserts the exit status, the message and that no
+# complete output line was lost or cut. Usage: faults.sh CERTCYL_BINARY
+set -uo pipefail
+certcyl=${1:?usage: faults.sh CERTCYL_BINARY}
+py=/usr/bin/python3
+work=$(mktemp -d)
+trap 'kill $(jobs -p) 2>/dev/null; rm -rf "$work"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+pass() { echo "ok:   $*"; }
+
+# Every line of $1 is a complete JSON object; prints the number of lines.
+complete_lines() {
+  "$py" - "$1" <<'EOF'
+import json, sys
+data = open(sys.argv[1], 'rb').read()
+if data and not data.endswith(b'\n'):
+    sys.exit('a cut line at the end')
+for n, line in enumerate(data.splitlines(), 1):
+    json.loads(line)
+print(len(data.splitlines()))
+EOF
+}
+
+cyl='{"p0":[0,0,0],"p1":[0,0,1],"radius":1}'
+
+# 1. A floating method whose products overflow: an answer, never a signal.
+out=$(echo '{"id":1,"query":"line_cylinder","line":{"origin":[0,0,0],"direction":[1e300,0,0]},"cylinder":'"$cyl"'}' |
+  "$certcyl" query --method robust_double)
+status=$?
+if [[ $status == 0 && $out == *'"answer":"invalid"'* && $out == *'"reason":"non-finite value in interval[0].approx"'* ]]; then
+  pass "overflow in robust_double answers invalid"
+else fail "overflow in robust_double: status $status, $out"; fi
+
+# 2. SIGINT in the middle of a long run: exit 130, every answered line complete and in order.
+"$py" - > "$work/many.jsonl" <<'EOF'
+import json
+for i in range(200000):
+    print(json.dumps({"id": i, "query": "cylinder_cylinder",
+                      "a": {"p0": [0, 0, 0], "p1": [0, 0, 2], "radius": 1},
+                      "b": {"p0": [2, 0, i % 7], "p1": [2, 1, 3], "radius": 1}}))
+EOF
+for threads in 1 2; do
+  "$certcyl" query --threads $threads < "$work/many.jsonl" > "$work/int.out" 2> "$work/int.err" &
+  pid=$!
+  sleep 1.5
+  kill -INT $pid
+  wait $pid
+  status=$?
+  n=$(complete_lines "$work/int.out")
+  ordered=$("$py" -c "
+import json,sys
+ids=[json.loads(l)['id'] for l in open('$work/int.out')]
+print(ids == list(range(len(ids))))")
+  if [[ $status == 130 && $n -gt 0 && $n -lt 200000 && $ordered == True ]]; then
+    pass "SIGINT during query --threads $threads: exit 130, $n complete lines in order"
+  else fail "SIGINT during query --threads $threads: status $status, lines $n, in order $ordered"; fi
+done
+
+# 3. SIGTERM while waiting for input: exit 143 at once; the line answered before is out.
+mkfifo "$work/fifo"
+"$certcyl" query < "$work/fifo" > "$work/wait.out" &
+pid=$!
+exec 7> "$work/fifo"
+echo '{"id":"first","query":"point_cylinder","point":[0,0,0.5],"cylinder":'"$cyl"'}' >&7
+for _ in $(seq 50); do [[ -s $work/wait.out ]] && break; sleep 0.1; done
+kill -TERM $pid
+wait $pid
+status=$?
+exec 7>&-
+if [[ $status == 143 && $(cat "$work/wait.out") == *'"id":"first","answer":"overlapping"'* ]]; then
+  pass "a co-process gets its answer before more input; SIGTERM while waiting exits 143"
+else fail "co-process/SIGTERM: status $status, output $(cat "$work/wait.out")"; fi
+
+# 4. A closed output (SIGPIPE ignored): exit 1 with a message, not death by signal.
+"$certcyl" query < "$work/many.jsonl" 2> "$work/pipe.err" | head -1 > /dev/null
+status=${PIPESTATUS[0]}
+if [[ $status == 1 && $(cat "$work/pipe.err") == *"error writing standard output"* ]]; then
+  pass "query into a closed pipe: exit 1 with a message"
+else fail "query into a closed pipe: status $status, $(cat "$work/pipe.err")"; fi
+
+# 5. A full device: every writing command says so and exits 1.
+if [[ -w /dev/full ]]; then
+  head -300 "$work/many.jsonl" | "$certcyl" query > /dev/full 2> "$work/full.err"
+  status=$?
+  [[ $status == 1 && $(cat "$work/full.err") == *"error writing standard output"* ]] &&
+    pass "query > /dev/full: exit 1 with a message" || fail "query > /dev/full: status $status"
+  "$certcyl" make-scene --cylinders 1000 > /dev/full 2> "$work/full.err"
+  status=$?
+  [[ $status == 1 && $(cat "$work/full.err") == *"error writing standard output"* ]] &&
+    pass "make-scene > /dev/full: exit 1 with a message" || fail "make-scene > /dev/full: status $status"
+  "$certcyl" demo > /dev/full 2> "$work/full.err"
+  status=$?
+  [[ $status == 1 && $(cat "$work/full.err") == *"error writing standard output"* ]] &&
+    pass "demo > /dev/full: exit 1 with a message" || fail "demo > /dev/full: status $status"
+  "$certcyl" make-scene --cylinders 500 --seed 3 > "$work/small_scene.json"
+  "$certcyl" scene "$work/small_scene.json" > /dev/full 2> "$work/full.err"
+  status=$?
+  [[ $status == 1 && $(cat "$work/full.err") == *"error writing standard output"* ]] &&
+    pass "scene > /dev/full: exit 1 with a message" || fail "scene > /dev/full: status $status"
+else
+  echo "skip: no writable /dev/full"
+fi
+
+# 6. A pathological scene: 10,000 identical cylinders (5 * 10^7 overlapping pairs). The scan
+# streams: memory stays that of the scene while lines pour out; SIGINT ends it with complete lines.
+"$py" -c "
+import json
+print(json.dumps({'cylinders': [{'name': 'c%d' % i, 'p0': [0, 0, 0], 'p1': [0, 0, 1], 'radius': 1} for i in range(10000)]}))
+" > "$work/identical.json"
+"$certcyl" scene --threads 2 "$work/identical.json" > "$work/identical.out" 2> "$work/identical.err" &
+pid=$!
+sleep 4
+peak_kb=$(awk '/VmHWM/ {print $2}' /proc/$pid/status)
+kill -INT $pid
+wait $pid
+status=$?
+n=$(complete_lines "$work/identical.out")
+if [[ $status == 130 && $n -gt 10000 && $peak_kb -lt 262144 ]]; then
+  pass "10,000 identical cylinders: $n lines in 4 s, peak memory $((peak_kb / 1024)) MiB, SIGINT exit 130, no cut line"
+else fail "identical cylinders: status $status, lines $n, peak ${peak_kb} kB"; fi
+
+# 7. Hostile lines, each its own error naming what is wrong, the others answered.
+{
+  echo '{"id":1,"query":"point_cylinder","point":[0,0,0.5],"cylinder":'"$cyl"'}'
+  "$py" -c "print('[' * 100000 + ']' * 100000)"
+  "$py" -c "print('{\"id\": 2, \"query\": \"point_cylinder\", \"point\": [\"' + '9' * 30000 + '\", 0, 0], \"cylinder\": $cyl}')"
+  "$py" -c "print('x' * 3000000)"
+  echo '{"id":3,"query":"point_cylinder","point":[0,0,0.5],"cylinder":'"$cyl"',"cylinder":'"$cyl"'}'
+  echo '{"id":4,"query":"point_cylinder","point":[0,0,0.5],"cylinder":'"$cyl"'}'
+} > "$work/hostile.jsonl"
+"$certcyl" query < "$work/hostile.jsonl" > "$work/hostile.out"
+status=$?
+expected=$(cat <<'EOF'
+{"id":1,"answer":"overlapping"}
+{"id":null,"line":2,"error":"malformed JSON: nested deeper than 16 levels"}
+{"id":2,"line":3,"error":"point[0]: exact number of 99659 bits (numerator and denominator); the limit is 65536 (about 19,700 decimal digits)"}
+{"id":null,"line":4,"error":"line longer than the limit of 1048576 bytes"}
+{"id":3,"line":5,"error":"malformed JSON: member \"cylinder\" appears twice in one object"}
+{"id":4,"answer":"overlapping"}
+EOF
+)
+got=$("$py" -c "
+import json
+for l in open('$work/hostile.out'):
+    j = json.loads(l)
+    print(json.dumps({k: j[k] for k in ('id', 'line', 'error', 'answer') if k in j}, separators=(',', ':')))")
+if [[ $status == 2 && $got == "$expected" ]]; then
+  pass "hostile lines: one exact error each, the others answered"
+else fail "hostile lines: status $status"; diff <(echo "$expected") <(echo "$got"); fi
+
+# 8. Bad options and files: a clear message, exit 1 (usage) or 2 (invalid scene).
+check_message() {  # expected-status expected-substring command...
+  local want=$1 text=$2
+  shift 2
+  "$@" > /dev/null 2> "$work/opt.err" < /dev/null
+  local status=$?
+  if [[ $status == "$want" && $(cat "$work/opt.err") == *"$text"* ]]; then pass "$* -> $status: $text"
+  else fail "$*: status $status, stderr $(head -c 300 "$work/opt.err")"; fi
+}
+check_message 1 "--nt: unknown number type 'floaty'" "$certcyl" query --nt floaty
+check_message 1 "--cylinders: Value -5 not in range" "$certcyl" make-scene --cylinders -5
+check_message 1 "--threads: Value -1 not in range" "$certcyl" query --threads -1
+check_message 1 "cannot open '$work/none.json': No such file or directory" "$certcyl" scene "$work/none.json"
+echo '{"cylinders": [{"name": "a", "p0": [0,0,0], "p1": [0,0,1], "radius": 1}, {"name": "a", "p0": [5,0,0], "p1": [5,0,1], "radius": 1}]}' > "$work/dup.json"
+check_message 2 'cylinders[1]: name "a" is also the name of cylinders[0]' "$certcyl" scene "$work/dup.json"
+"$py" -c "print('{\"cylinders\": ' + '[' * 100000 + ']' * 100000 + '}')" > "$work/deep.json"
+check_message 2 "nested deeper than 16 levels" "$certcyl" scene "$work/deep.json"
+
+echo "$failures failure(s)"
+[[ $failures == 0 ]]
