@@ -3,6 +3,7 @@
 #include <certcyl/certcyl.hpp>
 
 #include <iostream>
+#include <string>
 
 int main() {
   using namespace certcyl;
@@ -25,8 +26,19 @@ int main() {
   // The same cylinder lowered to rest on the first one's top cap (its wall at z = 2).
   const Cylinder<double> c{{-1, 0, 2.5}, {1, 0, 2.5}, 0.5};
   expect("touching pair", certified_cylinder_cylinder(a, c).answer == Answer::touching);
-  // A triangle through the axis.
+  // A triangle through the axis, in Rational and in double.
   const Triangle<Rational> t{{Point3<Rational>{-1, 0, 1}, Point3<Rational>{1, 0, 1}, Point3<Rational>{0, 1, 1}}};
   expect("triangle through the axis", certified_triangle_cylinder(t, cyl).answer == Answer::overlapping);
+  const Triangle<double> td{{Point3<double>{-1, 0, 1}, Point3<double>{1, 0, 1}, Point3<double>{0, 1, 1}}};
+  expect("triangle through the axis (double)", certified_triangle_cylinder(td, a).answer == Answer::overlapping);
+  // The point on the wall, by the certified point query; then a cylinder of radius -1, rejected.
+  expect("certified point on the wall", certified_point_cylinder(x, cyl).answer == Answer::touching);
+  std::string error;
+  try {
+    certified_point_cylinder(Point3<double>{0, 0, 1}, Cylinder<double>{{0, 0, 0}, {0, 0, 2}, -1});
+  } catch (const InvalidInput& e) {
+    error = e.what();
+  }
+  expect("negative radius rejected", error == "cylinder.radius: must be positive, got -1");
   return failures == 0 ? 0 : 1;
 }
