@@ -7,8 +7,10 @@
 
 #include <unistd.h>
 
+#include "cases.hpp"
 #include "demo.hpp"
 #include "interrupt.hpp"
+#include "judge.hpp"
 #include "query.hpp"
 #include "scene.hpp"
 #include "scene_generator.hpp"
@@ -129,6 +131,44 @@ int main(int argc, char** argv) {
   merge->add_option("DIR", merge_dir, "results/<name>, holding shard-*-of-* folders")->required();
   merge->add_flag("--no-plots", merge_no_plots, "Do not run the plotting script");
 
+  certcyl::cli::CaseSpec case_spec;
+  CLI::App* cases = app.add_subcommand("cases", "Write the study's cases of one query as `certcyl query` lines");
+  cases->footer(
+      "Writes the study's hard-case families and uniform inputs of the query (the instances `certcyl study`\n"
+      "plans, certified) as JSON lines `certcyl query` answers as they stand; \"meta\" carries the family, k\n"
+      "(the ulps off the degeneracy), the certified answer and the certified signed gap [lo, hi].\n"
+      "Judge a method's answers to them with `certcyl judge`.");
+  cases->add_option("--query", case_spec.query, "line_cylinder, ray_cylinder, segment_cylinder, line_elliptic_cylinder, "
+                                                "triangle_cylinder or cylinder_cylinder")->required();
+  cases->add_option("--family", case_spec.families, "Only these families (repeatable; default all of the query's)");
+  cases->add_option("--size", case_spec.size, "tiny, small (default), default, large, or cases per family");
+  cases->add_option("--seed", case_spec.seed, "Random seed (default 1, the study's)");
+  cases->add_option("--threads", case_spec.threads, "Threads certifying the cases (default 2; 0 = all cores)")
+      ->check(CLI::Range(0u, 1024u));
+
+  certcyl::cli::JudgeOptions judge_options;
+  CLI::App* judge = app.add_subcommand("judge", "Score a method's answers to the study's cases against the certified answers");
+  judge->footer(
+      "The answers come from --answers FILE ({\"id\", \"answer\"} lines), --exec COMMAND (a program reading\n"
+      "`certcyl query` lines on standard input and writing one answer line per line read) or --plugin\n"
+      "PATH.so (certcyl/plugin.h). The cases come from --cases FILE (`certcyl cases`) or are made as\n"
+      "`certcyl cases` makes them (--query, --family, --size, --seed; a plugin without --query: every\n"
+      "query it exports). Answers: separated, touching, overlapping, intersecting, undecided, invalid.\n"
+      "Writes results/<name>/ (families.csv, counterexamples.jsonl, summary.txt) and prints the summary.\n"
+      "Exit status: 0 every case judged, 1 otherwise (what was judged before the error is written).");
+  judge->add_option("--answers", judge_options.answers_file, "The method's answers, one JSON line per case");
+  judge->add_option("--exec", judge_options.exec_command, "A program answering query lines (run by /bin/sh -c)");
+  judge->add_option("--plugin", judge_options.plugin_file, "A shared library implementing certcyl/plugin.h");
+  judge->add_option("--cases", judge_options.cases_file, "Cases file written by `certcyl cases`");
+  judge->add_option("--query", judge_options.spec.query, "Make the cases of this query");
+  judge->add_option("--family", judge_options.spec.families, "Only these families (repeatable)");
+  judge->add_option("--size", judge_options.spec.size, "tiny, small (default), default, large, or cases per family");
+  judge->add_option("--seed", judge_options.spec.seed, "Random seed (default 1)");
+  judge->add_option("--threads", judge_options.spec.threads, "Threads certifying the cases (default 2; 0 = all cores)")
+      ->check(CLI::Range(0u, 1024u));
+  judge->add_option("--name", judge_options.name, "Results folder name under --out (default judge)");
+  judge->add_option("--out", judge_options.out_root, "Results root (default: results)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -167,6 +207,18 @@ int main(int argc, char** argv) {
       std::cerr << "certcyl: " << e.what() << '\n';
       return 1;
     }
+  }
+  if (cases->parsed() || judge->parsed()) {
+    for (unsigned* t : {&case_spec.threads, &judge_options.spec.threads})
+      if (*t == 0) *t = std::max(1u, std::thread::hardware_concurrency());
+    if (judge->parsed()) return certcyl::cli::run_judge(judge_options, std::cout, std::cerr);
+    try {
+      if (certcyl::cli::run_cases(case_spec, std::cout) == 0) return 0;
+      std::cerr << "certcyl cases: error writing standard output\n";
+    } catch (const std::exception& e) {
+      std::cerr << "certcyl cases: " << e.what() << '\n';
+    }
+    return 1;
   }
   if (make_scene->parsed()) {
     try {

@@ -50,12 +50,12 @@ double t_error_ulps(double t, double exact) {
   return static_cast<double>(std::fabs(static_cast<long double>(t) - static_cast<long double>(exact)) / ulp);
 }
 
+}  // namespace
+
 std::string outcome_of(const MethodOutput& m, const Instance& inst) {
   if (inst.certified == Answer::undecided) return "uncertified";
   return std::string(to_string(judge(m, inst.certified)));
 }
-
-}  // namespace
 
 MethodOutput run_quiet(const Method& m, const std::vector<double>& x) {
   std::unique_lock<std::mutex> lock(serial_mutex, std::defer_lock);

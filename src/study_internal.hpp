@@ -88,6 +88,10 @@ std::vector<Planned> plan_instances(const StudyOptions& o);
 
 // ---- Running methods (study_instances.cpp) -----------------------------------------------------
 
+// The outcome column of instances.csv: "uncertified" when the certified query left the instance
+// undecided, else the judgement of the method's output (study/methods.hpp).
+std::string outcome_of(const study::MethodOutput& m, const study::Instance& inst);
+
 // The method's output (error set when it throws); serial methods one at a time.
 study::MethodOutput run_quiet(const study::Method& m, const std::vector<double>& x);
 

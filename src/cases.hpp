@@ -1,0 +1,64 @@
+// `certcyl cases`: the study's instances of one query as ready-to-run `certcyl query` lines.
+//
+// A case is one planned instance of the study (study_plan.cpp: the hard-case families and the
+// uniform inputs, each depending only on the seed, its family, its query and its index) with its
+// certified answer and certified signed gap (study/gap.hpp). Its line is
+//   {"id": "<query>/<family>/<index>", "query": Q, operands..., "meta": {"family", "k",
+//    "certified", "gap": [lo, hi]}}
+// with every coordinate a JSON number (its binary64 value, written to round trip), so
+// `certcyl query` answers it as it stands and passes "meta" through. The gap is null when it is
+// unbounded (cylinder pairs with equal midpoints).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "certcyl/answer.hpp"
+#include "certcyl/study/instance.hpp"
+
+namespace certcyl::cli {
+
+struct CaseSpec {
+  std::string query;                  // a study query: line_cylinder, ..., cylinder_cylinder
+  std::vector<std::string> families;  // family names to keep (empty: every family of the query)
+  std::string size = "small";         // tiny | small | default | large | N (cases per family)
+  std::uint64_t seed = 1;
+  unsigned threads = 2;               // for certifying
+};
+
+struct Case {
+  std::string id;
+  study::Query query = study::Query::line_cylinder;
+  std::string family;
+  long long k = 0;
+  Answer certified = Answer::undecided;
+  double gap_lo = 0, gap_hi = 0;
+  std::vector<double> x;       // study/instance.hpp layout
+  std::size_t line = 0;        // its line number in a cases file (from 1); 0 when generated
+};
+
+// The study query named `name`; throws std::invalid_argument listing the names.
+study::Query parse_study_query(const std::string& name);
+
+// The planned instances of the spec, certified, in the study's order. Throws
+// std::invalid_argument on an unknown query, family or size.
+std::vector<Case> make_cases(const CaseSpec& spec);
+
+// The case's `certcyl query` line without "meta": id, query and operands.
+nlohmann::ordered_json query_line(const Case& c);
+// The same with "meta" (family, k, certified, gap).
+nlohmann::ordered_json case_line(const Case& c);
+
+// Reads a cases file (lines written by case_line; blank lines skipped). Throws
+// std::runtime_error naming `label` and the line: not JSON, a missing or malformed member, a
+// query that is not a study query, a duplicate id.
+std::vector<Case> read_cases(std::istream& in, const std::string& label);
+
+// `certcyl cases`: writes the lines; returns the exit status (1 when a write failed).
+int run_cases(const CaseSpec& spec, std::ostream& out);
+
+}  // namespace certcyl::cli

@@ -1,0 +1,71 @@
+// `certcyl judge`: the cases (a cases file, or made as `certcyl cases` makes them), the judged
+// method's answers (an answers file, a co-process or a plugin), and the results folder.
+#include "judge.hpp"
+
+#include <fstream>
+#include <stdexcept>
+
+#include "judge_internal.hpp"
+
+namespace certcyl::cli {
+
+int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
+  using namespace judging;
+  try {
+    const int sources = !o.answers_file.empty() + !o.exec_command.empty() + !o.plugin_file.empty();
+    if (sources != 1) throw std::invalid_argument("give one of --answers, --exec and --plugin");
+    std::optional<PluginInfo> plugin;
+    if (!o.plugin_file.empty()) plugin = inspect_plugin(o.plugin_file);
+
+    std::vector<Case> cases;
+    if (!o.cases_file.empty()) {
+      std::ifstream in(o.cases_file);
+      if (!in) throw std::runtime_error("--cases: cannot read '" + o.cases_file + "'");
+      cases = read_cases(in, o.cases_file);
+    } else if (!o.spec.query.empty()) {
+      cases = make_cases(o.spec);
+    } else if (plugin) {
+      for (study::Query q : plugin->queries) {
+        CaseSpec spec = o.spec;
+        spec.query = std::string(study::to_string(q));
+        spec.families.clear();
+        for (Case& c : make_cases(spec)) cases.push_back(std::move(c));
+      }
+    } else {
+      throw std::invalid_argument("give --cases FILE or --query Q");
+    }
+    if (plugin) {
+      std::erase_if(cases, [&](const Case& c) {
+        return std::find(plugin->queries.begin(), plugin->queries.end(), c.query) == plugin->queries.end();
+      });
+      if (cases.empty()) throw std::runtime_error("--plugin: " + plugin->name + " exports none of the cases' queries");
+    }
+
+    Answers answers;
+    std::string method;
+    if (!o.answers_file.empty()) {
+      std::ifstream in(o.answers_file);
+      if (!in) throw std::runtime_error("--answers: cannot read '" + o.answers_file + "'");
+      answers = read_answers(in, o.answers_file, cases);
+      method = std::filesystem::path(o.answers_file).stem().string();
+    } else if (!o.exec_command.empty()) {
+      answers = run_exec(o.exec_command, cases);
+      method = o.exec_command;
+    } else {
+      answers = run_plugin(o.plugin_file, cases);
+      method = plugin->name;
+    }
+    write_results(std::filesystem::path(o.out_root) / o.name, method, cases, answers, out);
+    out.flush();
+    if (!answers.failure.empty()) {
+      err << "certcyl judge: " << answers.failure << '\n';
+      return 1;
+    }
+    return out ? 0 : 1;
+  } catch (const std::exception& e) {
+    err << "certcyl judge: " << e.what() << '\n';
+    return 1;
+  }
+}
+
+}  // namespace certcyl::cli

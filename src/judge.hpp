@@ -1,0 +1,31 @@
+// `certcyl judge`: a method's answers to the study's cases, scored as the study scores its own
+// methods (study/methods.hpp: judge, disagrees), into results/<name>/ and a summary table.
+//
+// The answers come from one of three sources: a file of {"id", "answer"} lines (--answers), a
+// program answering `certcyl query` lines on its standard input (--exec), or a C plugin
+// (certcyl/plugin.h, --plugin). The cases come from a cases file (--cases, written by
+// `certcyl cases`) or are made in process (--query, --family, --size, --seed).
+#pragma once
+
+#include <ostream>
+#include <string>
+
+#include "cases.hpp"
+
+namespace certcyl::cli {
+
+struct JudgeOptions {
+  std::string answers_file;  // --answers
+  std::string exec_command;  // --exec, run by /bin/sh -c
+  std::string plugin_file;   // --plugin
+  std::string cases_file;    // --cases; else the cases of `spec`
+  CaseSpec spec;             // spec.query empty: every query a plugin exports
+  std::string name = "judge";
+  std::string out_root = "results";
+};
+
+// Runs the command; returns 0 when every case was judged, 1 otherwise (the error on `err`; what
+// was judged before it is written all the same).
+int run_judge(const JudgeOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace certcyl::cli

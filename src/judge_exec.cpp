@@ -1,0 +1,155 @@
+// A co-process: the program runs once (/bin/sh -c COMMAND); a writer thread feeds it the cases'
+// query lines in batches while this thread reads its answers, one line per case in order, so
+// neither side waits on a full pipe. A program that dies, writes a line that is not an answer to
+// the case in turn, or stops early ends the run; the answers read until then are kept.
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <stdexcept>
+#include <thread>
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "judge_internal.hpp"
+
+namespace certcyl::cli::judging {
+namespace {
+
+constexpr std::size_t kBatchLines = 256;
+
+// Writes all of `s` to fd; false when the reader has gone (EPIPE) or on another error.
+bool write_all(int fd, const std::string& s) {
+  std::size_t done = 0;
+  while (done < s.size()) {
+    const ssize_t n = ::write(fd, s.data() + done, s.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+std::string describe_status(int status) {
+  if (WIFSIGNALED(status)) {
+    const int s = WTERMSIG(status);
+    return "was killed by signal " + std::to_string(s) + " (" + (sigdescr_np(s) ? sigdescr_np(s) : "?") + ")";
+  }
+  if (WIFEXITED(status)) return "exited with status " + std::to_string(WEXITSTATUS(status));
+  return "ended";
+}
+
+std::string excerpt(const std::string& s) { return s.size() <= 120 ? s : s.substr(0, 120) + "..."; }
+
+// Reads lines from a file descriptor.
+class LineReader {
+ public:
+  explicit LineReader(int fd) : fd_(fd) {}
+  // The next line without its newline; false at the end of input (a last line without a newline
+  // is returned first).
+  bool next(std::string& line) {
+    for (;;) {
+      const auto nl = buffer_.find('\n', start_);
+      if (nl != std::string::npos) {
+        line.assign(buffer_, start_, nl - start_);
+        start_ = nl + 1;
+        return true;
+      }
+      buffer_.erase(0, start_);
+      start_ = 0;
+      char chunk[65536];
+      const ssize_t n = ::read(fd_, chunk, sizeof chunk);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        if (buffer_.empty()) return false;
+        line = std::move(buffer_);
+        buffer_.clear();
+        return true;
+      }
+      buffer_.append(chunk, static_cast<std::size_t>(n));
+    }
+  }
+
+ private:
+  int fd_;
+  std::string buffer_;
+  std::size_t start_ = 0;
+};
+
+}  // namespace
+
+Answers run_exec(const std::string& command, const std::vector<Case>& cases) {
+  int to_child[2], from_child[2];
+  if (::pipe2(to_child, O_CLOEXEC) != 0) throw std::runtime_error(std::string("--exec: pipe: ") + std::strerror(errno));
+  if (::pipe2(from_child, O_CLOEXEC) != 0) {
+    ::close(to_child[0]), ::close(to_child[1]);
+    throw std::runtime_error(std::string("--exec: pipe: ") + std::strerror(errno));
+  }
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error(std::string("--exec: fork: ") + std::strerror(errno));
+  if (pid == 0) {
+    ::dup2(to_child[0], 0);
+    ::dup2(from_child[1], 1);
+    ::signal(SIGPIPE, SIG_DFL);
+    ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  ::close(to_child[0]);
+  ::close(from_child[1]);
+
+  std::thread writer([&, fd = to_child[1]] {
+    // A program gone makes write() fail with EPIPE; the signal stays off this thread.
+    sigset_t pipe_signal;
+    sigemptyset(&pipe_signal);
+    sigaddset(&pipe_signal, SIGPIPE);
+    pthread_sigmask(SIG_BLOCK, &pipe_signal, nullptr);
+    std::string batch;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      batch += query_line(cases[i]).dump() + '\n';
+      if ((i + 1) % kBatchLines == 0 || i + 1 == cases.size()) {
+        if (!write_all(fd, batch)) break;
+        batch.clear();
+      }
+    }
+    ::close(fd);
+  });
+
+  Answers result;
+  result.answers.resize(cases.size());
+  LineReader reader(from_child[0]);
+  std::string text;
+  std::size_t n = 0;
+  for (; n < cases.size() && reader.next(text); ++n) {
+    const std::string where = "line " + std::to_string(n + 1) + " of the program's output (case '" + cases[n].id + "')";
+    try {
+      const nlohmann::json j = nlohmann::json::parse(text);
+      if (!j.is_object() || !j.contains("id")) throw std::invalid_argument("expected a JSON object with \"id\"");
+      if (j["id"] != cases[n].id) throw std::invalid_argument("id " + j["id"].dump() + " answers another case");
+      result.answers[n] = answered_line(j);
+    } catch (const std::exception& e) {
+      result.failure = where + ": " + e.what() + ": " + excerpt(text);
+      ::kill(pid, SIGKILL);
+      break;
+    }
+  }
+  if (result.failure.empty() && n < cases.size()) {
+    // The program closed its output early: say how it ended.
+    int status = 0;
+    ::close(from_child[0]);
+    writer.join();
+    ::waitpid(pid, &status, 0);
+    result.failure = "the program " + describe_status(status) + " after answering " + std::to_string(n) + " of " +
+                     std::to_string(cases.size()) + " lines (no answer to line " + std::to_string(n + 1) + ", case '" + cases[n].id + "')";
+    return result;
+  }
+  if (result.failure.empty() && reader.next(text))
+    result.failure = "the program wrote more lines than it was given: " + excerpt(text);
+  ::close(from_child[0]);
+  writer.join();
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return result;
+}
+
+}  // namespace certcyl::cli::judging

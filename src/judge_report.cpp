@@ -1,0 +1,169 @@
+// The judged method's outcomes, exactly as the study's (outcome_of: judge against the certified
+// answer, "uncertified" where the certified query was undecided), counted per query and family
+// with a 95% Wilson interval of the failure rate (failures: the study's disagreements, false
+// positives and false negatives, among the certified cases), the counterexamples, and the
+// summary table.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "judge_internal.hpp"
+#include "study_internal.hpp"
+
+namespace certcyl::cli::judging {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Counts {
+  std::size_t cases = 0;
+  std::map<std::string, std::size_t> outcomes;  // by the study's outcome name
+  std::size_t failures() const { return at("false_positive") + at("false_negative"); }
+  std::size_t certified() const { return cases - at("uncertified"); }
+  std::size_t at(const std::string& o) const {
+    const auto it = outcomes.find(o);
+    return it == outcomes.end() ? 0 : it->second;
+  }
+};
+
+const char* const kOutcomes[] = {"agree", "false_positive", "false_negative", "class_mismatch", "undecided", "error", "uncertified"};
+
+// The 95% Wilson score interval of a proportion of `failures` in `n` trials (n > 0).
+std::pair<double, double> wilson(std::size_t failures, std::size_t n) {
+  const double z = 1.959963984540054, p = static_cast<double>(failures) / static_cast<double>(n), nn = static_cast<double>(n);
+  const double denom = 1 + z * z / nn;
+  const double centre = (p + z * z / (2 * nn)) / denom;
+  const double half = z / denom * std::sqrt(p * (1 - p) / nn + z * z / (4 * nn * nn));
+  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+}
+
+std::string percent(double p) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f%%", 100 * p);
+  return buf;
+}
+
+// Sort key of a counterexample: the size of its gap (the midpoint of the enclosure; unbounded last).
+double gap_size(const Case& c) {
+  if (!std::isfinite(c.gap_lo) || !std::isfinite(c.gap_hi)) return std::numeric_limits<double>::infinity();
+  return std::fabs(0.5 * c.gap_lo + 0.5 * c.gap_hi);
+}
+
+}  // namespace
+
+Answered answered(const std::string& answer) {
+  Answered a{answer, {}};
+  if (answer == "intersecting") {
+    a.output = study::boolean_answer(true);
+  } else if (answer == "invalid" || answer == "error") {
+    a.output.error = true;
+  } else if (const auto x = answer_from_string(answer)) {
+    a.output = study::three_valued(*x);
+  } else {
+    throw std::invalid_argument("answer: expected separated, touching, overlapping, intersecting, undecided or invalid, got '" +
+                                answer + "'");
+  }
+  return a;
+}
+
+Answered answered_line(const nlohmann::json& j) {
+  if (j.contains("answer")) {
+    if (!j["answer"].is_string()) throw std::invalid_argument("answer: expected a string");
+    if (j["answer"] == "invalid" && j.contains("computed_answer") && j["computed_answer"].is_string())
+      return answered(j["computed_answer"].get<std::string>());
+    return answered(j["answer"].get<std::string>());
+  }
+  if (j.contains("error")) return answered("error");
+  throw std::invalid_argument("answer: missing");
+}
+
+void write_results(const fs::path& dir, const std::string& method, const std::vector<Case>& cases, const Answers& answers,
+                   std::ostream& out) {
+  fs::create_directories(dir);
+  std::map<std::pair<std::string, std::string>, Counts> by_family;  // (query, family)
+  std::map<std::string, Counts> by_query;
+  std::vector<std::pair<const Case*, std::string>> counterexamples;  // with the outcome
+  std::size_t judged = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    if (!answers.answers[i]) continue;
+    ++judged;
+    const Case& c = cases[i];
+    study::Instance inst;
+    inst.certified = c.certified;
+    const std::string outcome = detail::outcome_of(answers.answers[i]->output, inst);
+    const std::string query(study::to_string(c.query));
+    for (Counts* n : {&by_family[{query, c.family}], &by_query[query]}) {
+      ++n->cases;
+      ++n->outcomes[outcome];
+    }
+    if (c.certified != Answer::undecided && study::disagrees(study::judge(answers.answers[i]->output, c.certified)))
+      counterexamples.emplace_back(&c, outcome);
+  }
+
+  // families.csv and the table, one row per query and family, then one per query (family "all").
+  std::ofstream csv(dir / "families.csv");
+  csv << "method,query,family,cases";
+  for (const char* o : kOutcomes) csv << ',' << o;
+  csv << ",failures,failure_rate,failure_rate_lo95,failure_rate_hi95\n";
+  std::ostringstream table;
+  table << "certcyl judge: " << method << ", " << judged << " of " << cases.size() << " cases judged\n";
+  char line[256];
+  std::snprintf(line, sizeof line, "%-24s %-20s %6s %6s %6s %6s %6s %6s %6s %6s  %s\n", "query", "family", "cases", "agree", "f.pos",
+                "f.neg", "mism.", "undec.", "error", "uncert", "failure rate [95% CI]");
+  table << line;
+  auto row = [&](const std::string& query, const std::string& family, const Counts& n) {
+    csv << method << ',' << query << ',' << family << ',' << n.cases;
+    for (const char* o : kOutcomes) csv << ',' << n.at(o);
+    csv << ',' << n.failures();
+    std::string rate = "-";
+    if (n.certified() > 0) {
+      const double p = static_cast<double>(n.failures()) / static_cast<double>(n.certified());
+      const auto [lo, hi] = wilson(n.failures(), n.certified());
+      csv << ',' << detail::num(p) << ',' << detail::num(lo) << ',' << detail::num(hi) << '\n';
+      rate = percent(p) + " [" + percent(lo) + ", " + percent(hi) + "]";
+    } else {
+      csv << ",,,\n";
+    }
+    std::snprintf(line, sizeof line, "%-24s %-20s %6zu %6zu %6zu %6zu %6zu %6zu %6zu %6zu  %s\n", query.c_str(), family.c_str(), n.cases,
+                  n.at("agree"), n.at("false_positive"), n.at("false_negative"), n.at("class_mismatch"), n.at("undecided"),
+                  n.at("error"), n.at("uncertified"), rate.c_str());
+    table << line;
+  };
+  for (const auto& [key, n] : by_family) row(key.first, key.second, n);
+  for (const auto& [query, n] : by_query) row(query, "all", n);
+  table << "failures: false positives and false negatives among the certified cases (the study's disagreements)\n";
+
+  // counterexamples.jsonl: smallest |gap| first, one line per distinct input.
+  std::stable_sort(counterexamples.begin(), counterexamples.end(),
+                   [](const auto& a, const auto& b) { return gap_size(*a.first) < gap_size(*b.first); });
+  std::ofstream cx(dir / "counterexamples.jsonl");
+  std::set<std::string> seen;
+  std::size_t written = 0;
+  for (const auto& [c, outcome] : counterexamples) {
+    nlohmann::ordered_json input = query_line(*c);
+    input.erase("id");
+    if (!seen.insert(input.dump()).second) continue;
+    nlohmann::ordered_json l = case_line(*c);
+    l["meta"]["answer"] = answers.answers[static_cast<std::size_t>(c - cases.data())]->answer;
+    l["meta"]["outcome"] = outcome;
+    l["meta"]["method"] = method;
+    cx << l.dump() << '\n';
+    ++written;
+  }
+  table << written << " counterexamples (distinct inputs) in " << (dir / "counterexamples.jsonl").string() << '\n';
+  if (!answers.failure.empty()) table << "not all cases judged: " << answers.failure << '\n';
+
+  std::ofstream summary(dir / "summary.txt");
+  summary << table.str();
+  for (std::ofstream* f : {&csv, &cx, &summary}) {
+    f->flush();
+    if (!*f) throw std::runtime_error("cannot write the results in " + dir.string());
+  }
+  out << table.str();
+}
+
+}  // namespace certcyl::cli::judging

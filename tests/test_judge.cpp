@@ -1,0 +1,347 @@
+// `certcyl cases` and `certcyl judge`: the cases are lines `certcyl query` answers with their
+// certified answer and read back bit for bit; an answers file is scored with counts derived here
+// from the cases' certified answers; bad answers files are errors naming the line; a co-process
+// (`certcyl query --method shene --nt double`) gets the counts of the study's shene/double
+// method, computed here by the study's code; a program that stops, dies or writes garbage ends
+// the run with what was judged kept; the example plugin's failures are named where they occur,
+// and a plugin that crashes keeps the answers before the crash.
+#define BOOST_TEST_MODULE judge
+#include <boost/test/unit_test.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <cstring>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "cases.hpp"
+#include "certcyl/study/families.hpp"
+#include "certcyl/study/gap.hpp"
+#include "study_internal.hpp"
+#include "study_methods.hpp"
+
+using namespace certcyl;
+using json = nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kCertcyl = CERTCYL_BIN;
+
+struct Run {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> v;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);)
+    if (!l.empty()) v.push_back(l);
+  return v;
+}
+
+// A scratch folder per test case, removed at the end.
+struct Scratch {
+  fs::path dir;
+  Scratch() {
+    dir = fs::temp_directory_path() / ("certcyl_judge_" + std::to_string(::getpid()) + "_" +
+                                       boost::unit_test::framework::current_test_case().p_name.get());
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  ~Scratch() { fs::remove_all(dir); }
+  std::string operator/(const std::string& name) const { return (dir / name).string(); }
+  // Runs a shell command line in the folder.
+  Run run(const std::string& command) const {
+    const std::string cmd = "cd '" + dir.string() + "' && { " + command + "; } > out.txt 2> err.txt";
+    const int s = std::system(cmd.c_str());
+    return {WIFEXITED(s) ? WEXITSTATUS(s) : -1, slurp(dir / "out.txt"), slurp(dir / "err.txt")};
+  }
+};
+
+// families.csv as (query, family) -> column -> value.
+std::map<std::pair<std::string, std::string>, std::map<std::string, std::string>> families_csv(const fs::path& p) {
+  std::map<std::pair<std::string, std::string>, std::map<std::string, std::string>> out;
+  const auto rows = lines_of(slurp(p));
+  BOOST_REQUIRE(!rows.empty());
+  const auto header = cli::detail::split(rows[0], ',');
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const auto cells = cli::detail::split(rows[i], ',');
+    BOOST_REQUIRE(cells.size() == header.size());
+    std::map<std::string, std::string> row;
+    for (std::size_t j = 0; j < cells.size(); ++j) row[header[j]] = cells[j];
+    out[{row["query"], row["family"]}] = row;
+  }
+  return out;
+}
+
+long count(const std::map<std::string, std::string>& row, const std::string& column) { return std::stol(row.at(column)); }
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(cases_are_query_lines_with_their_certified_answers) {
+  Scratch s;
+  for (const std::string q : {"line_cylinder", "segment_cylinder", "cylinder_cylinder"}) {
+    const Run cases = s.run(kCertcyl + " cases --query " + q + " --size tiny > cases.jsonl");
+    BOOST_TEST_REQUIRE(cases.status == 0, cases.err);
+    const Run answers = s.run(kCertcyl + " query < cases.jsonl");
+    BOOST_TEST_REQUIRE(answers.status == 0, answers.err);
+    const auto in = lines_of(slurp(s / "cases.jsonl")), out = lines_of(answers.out);
+    BOOST_TEST_REQUIRE(in.size() == out.size());
+    std::set<std::string> families;
+    for (std::size_t i = 0; i < in.size(); ++i) {
+      const json c = json::parse(in[i]), a = json::parse(out[i]);
+      BOOST_TEST(a["id"] == c["id"]);
+      BOOST_TEST(a["meta"] == c["meta"]);  // passed through
+      BOOST_TEST(a["answer"] == c["meta"]["certified"], in[i]);
+      families.insert(c["meta"]["family"].get<std::string>());
+      // The pair query reports the same certified gap (log phi*) as an enclosure of it.
+      if (a.contains("gap") && a["gap"].is_array() && c["meta"]["gap"].is_array())
+        BOOST_TEST((a["gap"][0].get<double>() <= c["meta"]["gap"][1].get<double>() &&
+                    c["meta"]["gap"][0].get<double>() <= a["gap"][1].get<double>()));
+    }
+    // Every family of the query, 3 cases each at tiny size.
+    std::size_t expected_families = 0;
+    for (const study::Family& f : study::all_families())
+      expected_families += std::count(f.queries.begin(), f.queries.end(), cli::parse_study_query(q));
+    BOOST_TEST(families.size() == expected_families);
+    BOOST_TEST(in.size() == 3 * expected_families);
+    BOOST_TEST(families.count("uniform") == 1u);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(cases_read_back_bit_for_bit) {
+  cli::CaseSpec spec;
+  spec.query = "triangle_cylinder";
+  spec.size = "tiny";
+  spec.families = {"t_vertex_wall", "uniform"};
+  const std::vector<cli::Case> made = cli::make_cases(spec);
+  BOOST_TEST_REQUIRE(made.size() == 6u);
+  std::stringstream file;
+  for (const cli::Case& c : made) file << cli::case_line(c).dump() << '\n';
+  const std::vector<cli::Case> back = cli::read_cases(file, "cases");
+  BOOST_TEST_REQUIRE(back.size() == made.size());
+  for (std::size_t i = 0; i < made.size(); ++i) {
+    BOOST_TEST(back[i].id == made[i].id);
+    BOOST_TEST(back[i].family == made[i].family);
+    BOOST_TEST(back[i].k == made[i].k);
+    BOOST_TEST((back[i].certified == made[i].certified));
+    BOOST_TEST(back[i].line == i + 1);
+    BOOST_TEST(std::memcmp(back[i].x.data(), made[i].x.data(), made[i].x.size() * sizeof(double)) == 0);
+  }
+  BOOST_CHECK_THROW(cli::make_cases({"triangle_cylinder", {"tangent"}, "tiny"}), std::invalid_argument);
+  BOOST_CHECK_THROW(cli::make_cases({"sphere", {}, "tiny"}), std::invalid_argument);
+}
+
+BOOST_AUTO_TEST_CASE(answers_file_scored_per_family) {
+  Scratch s;
+  BOOST_TEST_REQUIRE(s.run(kCertcyl + " cases --query ray_cylinder --size tiny > cases.jsonl").status == 0);
+  // A method that always says "separated": wrong exactly where the certified answer meets.
+  std::map<std::string, std::map<std::string, long>> expected;  // family -> outcome -> count
+  std::set<std::string> meeting_inputs;
+  {
+    std::ofstream answers(s / "always_separated.jsonl");
+    for (const std::string& l : lines_of(slurp(s / "cases.jsonl"))) {
+      const json c = json::parse(l);
+      answers << json{{"id", c["id"]}, {"answer", "separated"}}.dump() << '\n';
+      const std::string certified = c["meta"]["certified"];
+      const std::string family = c["meta"]["family"];
+      ++expected[family][certified == "separated" ? "agree" : certified == "undecided" ? "uncertified" : "false_negative"];
+      if (certified == "touching" || certified == "overlapping") {
+        json input = c;
+        input.erase("id"), input.erase("meta");
+        meeting_inputs.insert(input.dump());
+      }
+    }
+  }
+  const Run r = s.run(kCertcyl + " judge --cases cases.jsonl --answers always_separated.jsonl --out results --name mine");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  const auto csv = families_csv(s.dir / "results/mine/families.csv");
+  for (const auto& [family, outcomes] : expected) {
+    const auto& row = csv.at({"ray_cylinder", family});
+    BOOST_TEST(count(row, "cases") == 3);
+    for (const char* o : {"agree", "false_negative", "uncertified"})
+      BOOST_TEST(count(row, o) == (outcomes.count(o) ? outcomes.at(o) : 0), family << " " << o);
+    BOOST_TEST(count(row, "false_positive") == 0);
+    BOOST_TEST(count(row, "failures") == count(row, "false_negative"));
+    BOOST_TEST(r.out.find("ray_cylinder             " + family) != std::string::npos, family);
+  }
+  // One counterexample per distinct meeting input, the smallest |gap| first, each a query line.
+  const auto cx = lines_of(slurp(s.dir / "results/mine/counterexamples.jsonl"));
+  BOOST_TEST(cx.size() == meeting_inputs.size());
+  double last = 0;
+  for (const std::string& l : cx) {
+    const json c = json::parse(l);
+    BOOST_TEST(c["meta"]["answer"] == "separated");
+    BOOST_TEST(c["meta"]["outcome"] == "false_negative");
+    BOOST_TEST(c["meta"]["certified"] != "separated");
+    const double g = c["meta"]["gap"].is_null() ? INFINITY
+                                                : std::fabs(0.5 * c["meta"]["gap"][0].get<double>() + 0.5 * c["meta"]["gap"][1].get<double>());
+    BOOST_TEST(g >= last);
+    last = g;
+  }
+  const Run again = s.run(kCertcyl + " query < results/mine/counterexamples.jsonl");
+  BOOST_TEST(again.status == 0, again.err);
+  // The Wilson interval of 0 failures in n starts at 0 and of n in n ends at 1.
+  for (const auto& [key, row] : csv) {
+    if (count(row, "failures") == 0 && !row.at("failure_rate_lo95").empty()) BOOST_TEST(std::stod(row.at("failure_rate_lo95")) == 0.0);
+    if (count(row, "failures") == count(row, "cases") - count(row, "uncertified") && count(row, "failures") > 0)
+      BOOST_TEST(std::stod(row.at("failure_rate_hi95")) == 1.0);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(bad_answers_files_name_the_line) {
+  Scratch s;
+  BOOST_TEST_REQUIRE(s.run(kCertcyl + " cases --query line_cylinder --family tangent --size 2 > cases.jsonl").status == 0);
+  const std::string a = R"({"id":"line_cylinder/tangent/0","answer":"separated"})", b = R"({"id":"line_cylinder/tangent/1","answer":"touching"})";
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {a + "\n", "no answer for case 'line_cylinder/tangent/1' (cases line 2)"},
+      {a + "\n" + a + "\n" + b + "\n", "answers.jsonl line 2: id 'line_cylinder/tangent/0' answered twice (first on line 1)"},
+      {a + "\n" + R"({"id":"line_cylinder/tangent/1","answer":"maybe"})" + "\n", "answers.jsonl line 2: answer: expected separated"},
+      {a + "\n" + b + "\n" + R"({"id":"x","answer":"separated"})" + "\n", "answers.jsonl line 3: id 'x' is not a case"},
+      {a + "\n{\"id\": \n", "answers.jsonl line 2: not JSON"},
+      {R"({"answer":"separated"})" "\n", "answers.jsonl line 1: id: expected"},
+  };
+  for (const auto& [text, message] : bad) {
+    std::ofstream(s / "answers.jsonl") << text;
+    const Run r = s.run(kCertcyl + " judge --cases cases.jsonl --answers answers.jsonl");
+    BOOST_TEST(r.status == 1);
+    BOOST_TEST(r.err.find(message) != std::string::npos, r.err);
+  }
+  std::ofstream(s / "answers.jsonl") << b << "\n" << a << "\n";
+  BOOST_TEST(s.run(kCertcyl + " judge --cases cases.jsonl --answers answers.jsonl").status == 0);
+  // A duplicate case id is an error of the cases file.
+  std::ofstream(s / "twice.jsonl") << slurp(s / "cases.jsonl") << lines_of(slurp(s / "cases.jsonl"))[0] << "\n";
+  const Run r = s.run(kCertcyl + " judge --cases twice.jsonl --answers answers.jsonl");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("twice.jsonl line 3: duplicate id 'line_cylinder/tangent/0'") != std::string::npos, r.err);
+}
+
+BOOST_AUTO_TEST_CASE(coprocess_gets_the_study_counts) {
+  // The study's shene/double method on the study's tiny line_cylinder instances, judged by the
+  // study's own code.
+  cli::StudyOptions o;
+  o.size = "small";
+  cli::detail::apply_size(o);
+  std::vector<cli::detail::Planned> plan = cli::detail::plan_instances(o);
+  std::erase_if(plan, [](const cli::detail::Planned& p) { return p.inst.query != study::Query::line_cylinder; });
+  study::Registry registry;
+  cli::register_line_methods(registry);
+  const auto shene = std::find_if(registry.begin(), registry.end(), [](const study::Method& m) {
+    return m.name() == "shene/double" && m.query == study::Query::line_cylinder;
+  });
+  BOOST_TEST_REQUIRE((shene != registry.end()));
+  std::map<std::string, std::map<std::string, long>> study_counts;
+  long failures = 0;
+  for (cli::detail::Planned& p : plan) {
+    study::certify(p.inst);
+    const std::string outcome = cli::detail::outcome_of(cli::detail::run_quiet(*shene, p.inst.x), p.inst);
+    ++study_counts[p.inst.family][outcome];
+    failures += outcome == "false_positive" || outcome == "false_negative";
+  }
+  BOOST_TEST(failures > 0);  // the comparison is not only of zeros
+
+  Scratch s;
+  const Run r = s.run(kCertcyl + " judge --exec \"" + kCertcyl + " query --method shene --nt double\" --query line_cylinder --size small");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  const auto csv = families_csv(s.dir / "results/judge/families.csv");
+  for (const auto& [family, outcomes] : study_counts)
+    for (const char* o : {"agree", "false_positive", "false_negative", "class_mismatch", "undecided", "error", "uncertified"})
+      BOOST_TEST(count(csv.at({"line_cylinder", family}), o) == (outcomes.count(o) ? outcomes.at(o) : 0), family << " " << o);
+  BOOST_TEST(csv.size() == study_counts.size() + 1);  // and the query's "all" row
+}
+
+BOOST_AUTO_TEST_CASE(coprocess_failures_keep_what_was_judged) {
+  Scratch s;
+  BOOST_TEST_REQUIRE(s.run(kCertcyl + " cases --query line_cylinder --size tiny > cases.jsonl").status == 0);
+  const std::string answer = kCertcyl + " query --method robust_double";
+  const auto judged = [&] {
+    long n = 0;
+    for (const auto& [key, row] : families_csv(s.dir / "results/judge/families.csv"))
+      if (key.second != "all") n += count(row, "cases");
+    return n;
+  };
+  Run r = s.run(kCertcyl + " judge --cases cases.jsonl --exec '" + answer + " | head -n 5'");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("the program exited with status 0 after answering 5 of") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("no answer to line 6") != std::string::npos, r.err);
+  BOOST_TEST(judged() == 5);
+  r = s.run(kCertcyl + " judge --cases cases.jsonl --exec '" + answer + " | { head -n 2; echo garbage; }'");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("line 3 of the program's output") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("garbage") != std::string::npos, r.err);
+  BOOST_TEST(judged() == 2);
+  r = s.run(kCertcyl + " judge --cases cases.jsonl --exec 'head -n 1 > /dev/null; kill -SEGV $$'");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("killed by signal 11") != std::string::npos, r.err);
+  BOOST_TEST(judged() == 0);
+  // Answers in another order are not answers to the lines in turn.
+  r = s.run(kCertcyl + " judge --cases cases.jsonl --exec '" + answer + " | tac'");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("answers another case") != std::string::npos, r.err);
+}
+
+BOOST_AUTO_TEST_CASE(example_plugin_fails_where_a_double_test_fails) {
+  Scratch s;
+  const Run r = s.run(kCertcyl + " judge --plugin " CERTCYL_PLUGIN_DOUBLE " --size tiny");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  BOOST_TEST(r.out.find("certcyl judge: plugin_double") != std::string::npos, r.out);
+  const auto csv = families_csv(s.dir / "results/judge/families.csv");
+  std::set<std::string> queries;
+  for (const auto& [key, row] : csv) queries.insert(key.first);
+  // Every query it exports, and no other.
+  BOOST_TEST((queries == std::set<std::string>{"cylinder_cylinder", "line_cylinder", "ray_cylinder", "segment_cylinder"}));
+  // The naive line test fails on the near-tangent families, not far from any degeneracy.
+  long near_tangent = 0;
+  for (const char* q : {"line_cylinder", "ray_cylinder", "segment_cylinder"}) {
+    for (const char* f : {"tangent", "tangent_rotated", "near_parallel", "rim", "rim_rotated"}) near_tangent += count(csv.at({q, f}), "failures");
+    BOOST_TEST(count(csv.at({q, "uniform"}), "failures") == 0);
+  }
+  BOOST_TEST(near_tangent > 0);
+  // The capsule test meets the cylinders near the caps.
+  BOOST_TEST(count(csv.at({"cylinder_cylinder", "c_cap_cap"}), "false_positive") + count(csv.at({"cylinder_cylinder", "c_rim_cap"}), "false_positive") > 0);
+  // Each counterexample's family is counted as failing, in the CSV and in the printed table.
+  const auto cx = lines_of(slurp(s.dir / "results/judge/counterexamples.jsonl"));
+  BOOST_TEST(!cx.empty());
+  for (const std::string& l : cx) {
+    const json c = json::parse(l);
+    const auto& row = csv.at({c["query"].get<std::string>(), c["meta"]["family"].get<std::string>()});
+    BOOST_TEST(count(row, "failures") > 0);
+    const std::string query = c["query"], family = c["meta"]["family"];
+    const auto table = lines_of(r.out);
+    BOOST_TEST(std::any_of(table.begin(), table.end(), [&](const std::string& t) {
+      return t.rfind(query + " ", 0) == 0 && t.find(" " + family + " ") != std::string::npos;
+    }), query << " " << family);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(plugin_crash_keeps_earlier_answers) {
+  Scratch s;
+  const Run r = s.run(kCertcyl + " judge --plugin " CERTCYL_PLUGIN_CRASH " --query line_cylinder --size tiny");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("plugin crashed on line 5 (signal 11") != std::string::npos, r.err);
+  long judged = 0;
+  for (const auto& [key, row] : families_csv(s.dir / "results/judge/families.csv"))
+    if (key.second != "all") judged += count(row, "cases");
+  BOOST_TEST(judged == 4);
+  BOOST_TEST(slurp(s.dir / "results/judge/summary.txt").find(", 4 of ") != std::string::npos);
+  // A plugin exporting no query of the cases is an error.
+  const Run none = s.run(kCertcyl + " judge --plugin " CERTCYL_PLUGIN_CRASH " --query cylinder_cylinder --size tiny");
+  BOOST_TEST(none.status == 1);
+  BOOST_TEST(none.err.find("exports none of the cases' queries") != std::string::npos, none.err);
+}
