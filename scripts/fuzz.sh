@@ -10,7 +10,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
-harnesses=(fuzz_json_line fuzz_line_cylinder fuzz_triangle_cylinder fuzz_cylinder_cylinder)
+harnesses=(fuzz_json_line fuzz_line_cylinder fuzz_triangle_cylinder fuzz_cylinder_cylinder fuzz_study_config fuzz_merge)
 bash scripts/build-sanitize.sh "${harnesses[@]}"
 build=build-sanitize
 mkdir -p "$build/findings"

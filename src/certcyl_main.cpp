@@ -119,8 +119,10 @@ int main(int argc, char** argv) {
   study->add_option("--out", study_options.out_root, "Results root (default: results)");
   study->add_option("--config", study_options.config_file, "JSON configuration (per_family, map_cells, map_step, hunt_evaluations, methods, families, size, seed, name)");
   study->add_option("--size", study_options.size, "tiny, small, default, large, or instances per family and query");
-  study->add_option("--seed", study_options.seed, "Random seed (default 1)");
-  study->add_option("--threads", study_options.threads, "Worker threads (default 2; 0 = all cores)");
+  study->add_option("--seed", study_options.seed, "Random seed (default 1)")
+      ->check(CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 0, UINT64_MAX); }, "UINT64"));
+  study->add_option("--threads", study_options.threads, "Worker threads (default 2; 0 = all cores)")
+      ->check(CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 0, 1024); }, "0..1024"));
   study->add_option("--shard", shard, "Run shard i of n (i/n, 0-based) into results/<name>/shard-i-of-n; then `certcyl merge`");
   study->add_flag("--no-plots", no_plots, "Do not run the plotting script");
   study->add_flag("--progress,!--no-progress", study_options.progress, "Progress bar on standard error (default on)");
@@ -196,17 +198,29 @@ int main(int argc, char** argv) {
     return certcyl::cli::run_query(std::cin, std::cout, options, threads);
   }
   if (study->parsed() || merge->parsed()) {
+    const char* command = merge->parsed() ? "merge" : "study";
+    int status = 0;
     try {
-      if (merge->parsed()) return certcyl::cli::run_merge(merge_dir, !merge_no_plots, std::cout);
-      if (!shard.empty()) certcyl::cli::parse_shard(shard, study_options.shard_index, study_options.shard_count);
-      if (study_options.threads == 0) study_options.threads = std::max(1u, std::thread::hardware_concurrency());
-      study_options.plots = !no_plots;
-      if (!isatty(2) && study->count("--progress") == 0) study_options.progress = false;
-      return certcyl::cli::run_study(study_options, std::cout);
+      if (merge->parsed()) {
+        status = certcyl::cli::run_merge(merge_dir, !merge_no_plots, std::cout);
+      } else {
+        if (!shard.empty()) certcyl::cli::parse_shard(shard, study_options.shard_index, study_options.shard_count);
+        if (study_options.threads == 0) study_options.threads = std::max(1u, std::thread::hardware_concurrency());
+        study_options.plots = !no_plots;
+        if (!isatty(2) && study->count("--progress") == 0) study_options.progress = false;
+        status = certcyl::cli::run_study(study_options, std::cout);
+      }
     } catch (const std::exception& e) {
       std::cerr << "certcyl: " << e.what() << '\n';
       return 1;
     }
+    // The summary on standard output is part of the result: losing it is an error.
+    std::cout.flush();
+    if (!std::cout) {
+      std::cerr << "certcyl " << command << ": error writing standard output\n";
+      return 1;
+    }
+    return status;
   }
   if (cases->parsed() || judge->parsed()) {
     for (unsigned* t : {&case_spec.threads, &judge_options.spec.threads})

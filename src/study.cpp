@@ -23,6 +23,7 @@
 #include <iomanip>
 
 #include "study_internal.hpp"
+#include "study_files.hpp"
 #include "study_methods.hpp"
 
 namespace certcyl::cli {
@@ -30,9 +31,6 @@ using namespace detail;
 using namespace certcyl::study;
 
 int run_study(StudyOptions o, std::ostream& out) {
-  apply_config(o);
-  apply_size(o);
-  if (o.name.empty()) o.name = o.size;
   const auto start = std::chrono::steady_clock::now();
   Registry registry;
   register_line_methods(registry);
@@ -40,6 +38,9 @@ int run_study(StudyOptions o, std::ostream& out) {
   register_cylinder_methods(registry);
   const std::vector<std::string> peers = register_peer_methods(registry);
   mark_serial(registry);
+  std::vector<std::string> method_names;
+  for (const Method& m : registry) method_names.push_back(m.name());
+  configure_study(o, method_names);
 
   fs::path dir = fs::path(o.out_root) / o.name;
   const bool sharded = o.shard_count > 1;
@@ -50,9 +51,14 @@ int run_study(StudyOptions o, std::ostream& out) {
   std::vector<Planned> plan = plan_instances(o);
   std::vector<std::vector<Row>> rows = run_instances(o, registry, plan);
   write_instances(work, plan, rows);
+  // Their writer does not report errors: the lines on disk must be all the lines written.
+  std::size_t row_count = 0;
+  for (const auto& r : rows) row_count += r.size();
+  check_lines(work / "instances.csv", row_count + 1);
+  check_lines(work / "inputs.csv", plan.size() + 1);
   if (o.map_cells > 0 && o.shard_index == 0) run_failure_maps(o, registry, work);
   if (o.hunt_evaluations > 0) run_hunt(o, registry, work);
-  std::ofstream(work / "machine.json") << machine_json(o, peers).dump(2) << '\n';
+  write_whole(work / "machine.json", machine_json(o, peers).dump(2) + '\n');
   const std::string table = sharded ? std::string() : write_summary(work);
   seal_folder(work, dir);
 

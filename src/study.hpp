@@ -27,8 +27,19 @@ struct StudyOptions {
   std::vector<std::string> families; // family names to keep (empty: all)
 };
 
-// Parses "i/n" (0 <= i < n); throws std::invalid_argument.
+// Parses "i/n" (integers 0 <= i < n <= 100000); throws std::invalid_argument naming --shard.
 void parse_shard(const std::string& s, int& index, int& count);
+
+// "" when text is a decimal integer in [lo, hi] (digits only: no sign, base prefix or fraction),
+// else "expected an integer in [lo, hi], got 'text'": the check of --seed and --threads.
+std::string integer_error(const std::string& text, unsigned long long lo, unsigned long long hi);
+
+// Fills the options from the configuration file and the size preset and checks every option
+// and key before any work: its JSON type, its range (integers as JSON integers, never truncated
+// or wrapped), the families (names of study::all_families()) and the method filters (each a
+// substring of some name in method_names), a plain folder name (results stay inside --out).
+// Throws std::invalid_argument naming the option or key and the value.
+void configure_study(StudyOptions& o, const std::vector<std::string>& method_names);
 
 // Runs the study; writes the results folder; returns the exit status.
 int run_study(StudyOptions options, std::ostream& out);

@@ -12,6 +12,7 @@
 #include "certcyl/study/families.hpp"
 #include "certcyl/study/gap.hpp"
 #include "study_internal.hpp"
+#include "study_files.hpp"
 
 namespace certcyl::cli::detail {
 using namespace certcyl::study;
@@ -194,6 +195,7 @@ void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& d
   std::ofstream csv(dir / "hunt.csv");
   csv << kHuntHeader << '\n';
   for (const auto& l : lines) csv << l << '\n';
+  close_written(csv, dir / "hunt.csv");
 }
 
 }  // namespace certcyl::cli::detail

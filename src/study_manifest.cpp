@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "study_internal.hpp"
+#include "study_files.hpp"
 
 namespace certcyl::cli::detail {
 
@@ -107,12 +108,7 @@ void write_manifest(const fs::path& dir) {
   for (const std::string& rel : covered_files(dir)) files[rel] = file_entry(dir / rel, rel);
   manifest["files"] = files;
   const fs::path tmp = dir / ".manifest.json.tmp";
-  {
-    std::ofstream out(tmp);
-    out << manifest.dump(2) << '\n';
-    out.flush();
-    if (!out) throw std::runtime_error(tmp.string() + ": cannot write");
-  }
+  write_whole(tmp, manifest.dump(2) + '\n');
   fs::rename(tmp, dir / "manifest.json");
 }
 
@@ -136,17 +132,25 @@ nlohmann::json verified_machine(const fs::path& dir, const std::string& label) {
   const std::vector<std::string> present = covered_files(dir);
   for (const auto& [rel, entry] : manifest["files"].items()) {
     const std::string where = label + "/" + rel;
-    const fs::path p = dir / rel;
-    if (!fs::is_regular_file(p)) throw std::runtime_error(where + ": missing (listed in the manifest)");
-    if (!entry.is_object()) throw std::runtime_error(label + "/manifest.json: not a study manifest");
-    if (entry.contains("rows")) {
-      const long rows = csv_rows(p), listed = entry["rows"].get<long>();
-      if (rows != listed)
-        throw std::runtime_error(where + ": " + std::to_string(rows) + " data rows, the manifest lists " + std::to_string(listed));
+    // Only files inside the folder, named as covered_files names them.
+    if (std::find(present.begin(), present.end(), rel) == present.end()) {
+      const fs::path r(rel);
+      if (rel.empty() || r.is_absolute() || rel != r.lexically_normal().generic_string() || rel.rfind("../", 0) == 0 || rel == "..")
+        throw std::runtime_error(label + "/manifest.json: lists '" + rel + "', not a file of the folder");
+      throw std::runtime_error(where + ": missing (listed in the manifest)");
     }
-    if (fs::file_size(p) != entry.value("bytes", std::uintmax_t{0}))
-      throw std::runtime_error(where + ": " + std::to_string(fs::file_size(p)) + " bytes, the manifest lists " + entry.value("bytes", nlohmann::json()).dump());
-    if (sha256_file(p) != entry.value("sha256", std::string()))
+    const fs::path p = dir / rel;
+    const bool entry_ok = entry.is_object() && entry.contains("bytes") && entry["bytes"].is_number_unsigned() && entry.contains("sha256") &&
+                          entry["sha256"].is_string() && (!entry.contains("rows") || entry["rows"].is_number_unsigned());
+    if (!entry_ok) throw std::runtime_error(label + "/manifest.json: not a study manifest (entry of " + rel + ")");
+    if (entry.contains("rows")) {
+      const long rows = csv_rows(p);
+      if (entry["rows"] != rows)
+        throw std::runtime_error(where + ": " + std::to_string(rows) + " data rows, the manifest lists " + entry["rows"].dump());
+    }
+    if (entry["bytes"] != fs::file_size(p))
+      throw std::runtime_error(where + ": " + std::to_string(fs::file_size(p)) + " bytes, the manifest lists " + entry["bytes"].dump());
+    if (sha256_file(p) != entry["sha256"].get<std::string>())
       throw std::runtime_error(where + ": SHA-256 differs from the manifest (the file was altered)");
   }
   for (const std::string& rel : present)
@@ -155,7 +159,8 @@ nlohmann::json verified_machine(const fs::path& dir, const std::string& label) {
   std::ifstream m(dir / "machine.json");
   if (!m) throw std::runtime_error(label + "/machine.json: missing");
   nlohmann::json machine = nlohmann::json::parse(m, nullptr, false);
-  if (machine.is_discarded() || !machine.contains("options") || !machine["options"].contains("shard"))
+  if (machine.is_discarded() || !machine.is_object() || !machine.contains("options") || !machine["options"].is_object() ||
+      !machine["options"].contains("shard") || !machine["options"]["shard"].is_string())
     throw std::runtime_error(label + "/machine.json: not a study's machine.json");
   const nlohmann::json expected = configuration_of(machine);
   for (const char* key : {"shard", "options", "build"})

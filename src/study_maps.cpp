@@ -8,6 +8,7 @@
 #include "certcyl/study/families.hpp"
 #include "certcyl/study/gap.hpp"
 #include "study_internal.hpp"
+#include "study_files.hpp"
 
 namespace certcyl::cli::detail {
 using namespace certcyl::study;
@@ -124,6 +125,7 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
       for (char c : codes[cell]) csv << ',' << c;
       csv << '\n';
     }
+    close_written(csv, maps / (spec.name + ".csv"));
     nlohmann::ordered_json strides = nlohmann::ordered_json::object();
     for (const Method* m : methods)
       if (m->effort.map_stride > 1) strides[m->name()] = m->effort.map_stride;
@@ -137,7 +139,7 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
                                 {"map_strides", strides},
                                 {"codes", "s separated, t touching, o overlapping, i intersecting (boolean methods), u undecided, e error, "
                                           ". not evaluated (a slow method runs on every map_stride-th row and column through the centre)"}};
-    std::ofstream(maps / (spec.name + ".json")) << meta.dump(2) << '\n';
+    write_whole(maps / (spec.name + ".json"), meta.dump(2) + '\n');
   }
 }
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "study_internal.hpp"
+#include "study_files.hpp"
 
 namespace certcyl::cli {
 using namespace detail;
@@ -147,15 +148,18 @@ int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
     std::ofstream csv(dir / "instances.csv");
     csv << kRowHeader << '\n';
     for (const auto& r : rows) csv << r.second << '\n';
+    close_written(csv, dir / "instances.csv");
     std::ofstream in(dir / "inputs.csv");
     in << kInputsHeader << '\n';
     for (const auto& r : inputs) in << r.second << '\n';
+    close_written(in, dir / "inputs.csv");
     std::ofstream h(dir / "hunt.csv");
     h << kHuntHeader << '\n';
     for (const auto& l : hunt) h << l << '\n';
+    close_written(h, dir / "hunt.csv");
     machine["merged_shards"] = shards.size();
     machine["options"]["shard"] = "merged";
-    std::ofstream(dir / "machine.json") << machine.dump(2) << '\n';
+    write_whole(dir / "machine.json", machine.dump(2) + '\n');
   }
   out << write_summary(dir);
   write_manifest(dir);

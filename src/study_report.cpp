@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "study_internal.hpp"
+#include "study_files.hpp"
 
 #ifndef CERTCYL_SOURCE_DIR
 #define CERTCYL_SOURCE_DIR "."
@@ -112,17 +113,19 @@ std::string write_summary(const fs::path& dir) {
   }
   const Checks c = checks_from_inputs(dir / "inputs.csv");
   const std::string table = summary_table(by_method, c) + '\n' + write_stages(dir);
-  std::ofstream(dir / "summary.txt") << table;
+  write_whole(dir / "summary.txt", table);
   std::ofstream csv(dir / "summary.csv");
   csv << "query,method,kind,n,false_positive,false_negative,class_mismatch,undecided,error,disagreement_rate,median_ns\n";
   for (auto& [key, t] : by_method_query)
     csv << std::get<0>(key) << ',' << std::get<1>(key) << ',' << t.kind << ',' << t.n << ',' << t.fp << ',' << t.fn << ',' << t.cls << ','
         << t.undecided << ',' << t.errors << ',' << num(t.rate()) << ',' << num(t.median_ns()) << '\n';
+  close_written(csv, dir / "summary.csv");
   std::ofstream fam(dir / "summary_families.csv");
   fam << "query,family,method,kind,n,false_positive,false_negative,class_mismatch,undecided,error,disagreement_rate\n";
   for (auto& [key, t] : by_family)
     fam << std::get<0>(key) << ',' << std::get<1>(key) << ',' << std::get<2>(key) << ',' << t.kind << ',' << t.n << ',' << t.fp << ','
         << t.fn << ',' << t.cls << ',' << t.undecided << ',' << t.errors << ',' << num(t.rate()) << '\n';
+  close_written(fam, dir / "summary_families.csv");
   return table;
 }
 

@@ -55,7 +55,12 @@ Row parse_row(const std::string& line) {
   const auto f = split(line, ',');
   if (f.size() != 16) throw std::runtime_error("instances.csv: bad row '" + line + "'");
   Row r;
-  r.family = f[0], r.query = f[1], r.instance = std::stoull(f[2]), r.k = std::stoll(f[3]), r.expected = f[4];
+  try {
+    r.instance = std::stoull(f[2]), r.k = std::stoll(f[3]);
+  } catch (const std::logic_error&) {  // not a number, or out of range
+    throw std::runtime_error("instances.csv: bad row '" + line + "'");
+  }
+  r.family = f[0], r.query = f[1], r.expected = f[4];
   r.method = f[5], r.base = f[6], r.nt = f[7], r.kind = f[8], r.answer = f[9], r.certified = f[10], r.outcome = f[11];
   r.gap_lo = parse_num(f[12]), r.gap_hi = parse_num(f[13]), r.ns = parse_num(f[14]), r.t_error = parse_num(f[15]);
   return r;

@@ -13,6 +13,7 @@
 
 #include "certcyl/certified/cylinder_cylinder.hpp"
 #include "study_internal.hpp"
+#include "study_files.hpp"
 
 namespace certcyl::cli::detail {
 
@@ -78,6 +79,7 @@ std::string write_stages(const fs::path& dir) {
   csv << "family,stage,certified_by,gmpfr_bits,instances\n";
   for (const auto& [key, n] : counts)
     csv << std::get<0>(key) << ',' << names[key].first << ',' << names[key].second << ',' << std::get<3>(key) << ',' << n << '\n';
+  close_written(csv, dir / "stages.csv");
 
   std::ostringstream os;
   os << "cylinder pairs: the stage of certified_cylinder_cylinder that decided each certified answer, per family\n";
