@@ -29,8 +29,9 @@
 // primitives above (radius <= 0, p0 == p1, a zero direction, det[a b c] = 0): on exact input,
 // and on binary64 input, where every number must also be finite ("line.origin[2]: non-finite
 // number") and the checks are those of the exact values the doubles denote. `valid(p)` is the
-// same test without a message or an allocation; `validate_operand(p, field)` runs it and builds
-// the message only on failure: the check at every query's entry point.
+// same test without a message (on binary64 input, without an allocation but for an elliptic
+// frame whose determinant intervals cannot sign); `validate_operand(p, field)` runs it and
+// builds the message only on failure: the check at every query's entry point.
 #pragma once
 
 #include <CGAL/FPU.h>
