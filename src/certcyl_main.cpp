@@ -62,6 +62,9 @@ int main(int argc, char** argv) {
           return std::string(e.what());
         }
       });
+  query->add_flag("--brief", options.brief,
+                  "Only id, meta, answer, the interval of a line query as two doubles (certified: the proved\n"
+                  "nearest doubles of the exact endpoints), the gap of a pair and the reason of an invalid answer");
   query->add_option("--threads", threads, "Worker threads (default 1; 0 = all cores)")->check(CLI::Range(0u, 1024u));
 
   std::string scene_file;

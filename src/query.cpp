@@ -120,6 +120,21 @@ std::string non_finite_member(const ojson& j, const std::string& path) {
   return {};
 }
 
+// The --brief form of an answer line (QueryOptions::brief).
+ojson brief_answer(const ojson& full) {
+  ojson b{{"id", full["id"]}};
+  if (full.contains("meta")) b["meta"] = full["meta"];
+  b["answer"] = full["answer"];
+  if (auto it = full.find("interval"); it != full.end()) {
+    ojson t = ojson::array();
+    for (const auto& end : *it) t.push_back(end.value("approx", ojson(nullptr)));
+    b["interval"] = t;
+  }
+  if (auto it = full.find("gap"); it != full.end()) b["gap"] = *it;
+  if (auto it = full.find("reason"); it != full.end()) b["reason"] = *it;
+  return b;
+}
+
 }  // namespace
 
 json parse_strict_json(const std::string& text) { return json::parse(text, strict_callback()); }
@@ -184,6 +199,7 @@ ojson answer_line(const std::string& line, const QueryOptions& options, std::siz
         result["reason"] = "non-finite value in " + where;
       }
     }
+    if (options.brief) return brief_answer(result);
     return result;
   } catch (const InvalidInput& e) {
     return error_line(id, line_number, e.what());

@@ -31,6 +31,10 @@ struct QueryOptions {
   std::string method = "certified";
   NumberTypeSpec nt{NumberKind::double_, 53};
   bool nt_given = false;  // --nt was on the command line
+  // --brief: each answer line holds only id, meta, answer, the interval of a line query as its
+  // two (proved nearest, for the certified method) doubles, the gap of a pair, and the reason
+  // of an invalid answer.
+  bool brief = false;
 };
 
 // Limits on one input line.

@@ -153,3 +153,25 @@ BOOST_AUTO_TEST_CASE(a_method_that_does_not_answer_the_query_is_an_error) {
   BOOST_TEST(r.status == 2);
   BOOST_TEST(std::string(r.lines[0]["error"]).find("method") != std::string::npos);
 }
+
+BOOST_AUTO_TEST_CASE(brief_answers) {
+  QueryOptions o;
+  o.brief = true;
+  // The line x = 1/2 + t, y = 0, z = 1 crosses the wall of the unit cylinder at x = -1 and x = 1:
+  // t in [-3/2, 1/2], both exact doubles.
+  const Run line = run(R"({"id": "l", "query": "line_cylinder", "line": {"origin": [0.5, 0, 1], "direction": [1, 0, 0]}, )"
+                       R"("cylinder": {"p0": [0,0,0], "p1": [0,0,2], "radius": 1}, "meta": {"k": 1}})"
+                       "\n",
+                       o);
+  BOOST_TEST(line.lines.at(0) == json::parse(R"({"id": "l", "meta": {"k": 1}, "answer": "overlapping", "interval": [-1.5, 0.5]})"));
+  // Two unit cylinders with parallel axes 3 apart: separated; the gap is an enclosure of log(phi*) < 0.
+  const Run pair = run(R"({"id": 2, "query": "cylinder_cylinder", "a": {"p0": [0,0,0], "p1": [0,0,1], "radius": 1}, )"
+                       R"("b": {"p0": [3,0,0], "p1": [3,0,1], "radius": 1}})"
+                       "\n",
+                       o);
+  const json& p = pair.lines.at(0);
+  BOOST_TEST(p["answer"] == "separated");
+  BOOST_TEST(p.size() == 3u);  // id, answer, gap
+  BOOST_TEST(p["gap"][1].get<double>() < 0);
+  BOOST_TEST(p["gap"][0].get<double>() <= p["gap"][1].get<double>());
+}
