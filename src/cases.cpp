@@ -146,6 +146,7 @@ std::vector<Case> make_cases(const CaseSpec& spec) {
     c.query = q, c.family = p.inst.family, c.k = p.k;
     c.certified = p.inst.certified, c.gap_lo = p.inst.gap_lo, c.gap_hi = p.inst.gap_hi;
     c.x = p.inst.x;
+    c.line = cases.size() + 1;
     cases.push_back(std::move(c));
   }
   return cases;

@@ -38,7 +38,7 @@ struct Case {
   Answer certified = Answer::undecided;
   double gap_lo = 0, gap_hi = 0;
   std::vector<double> x;       // study/instance.hpp layout
-  std::size_t line = 0;        // its line number in a cases file (from 1); 0 when generated
+  std::size_t line = 0;        // its line in the cases file, or in `certcyl cases` of the same options (from 1)
 };
 
 // The study query named `name`; throws std::invalid_argument listing the names.

@@ -25,10 +25,10 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
     } else if (!o.spec.query.empty()) {
       cases = make_cases(o.spec);
     } else if (plugin) {
+      if (!o.spec.families.empty()) throw std::invalid_argument("--family needs --query (family names are per query)");
       for (study::Query q : plugin->queries) {
         CaseSpec spec = o.spec;
         spec.query = std::string(study::to_string(q));
-        spec.families.clear();
         for (Case& c : make_cases(spec)) cases.push_back(std::move(c));
       }
     } else {

@@ -94,10 +94,7 @@ std::string answer_of(int value) {
   }
 }
 
-// The case's line: in the cases file, or in the cases written by `certcyl cases` with the same options.
-std::string line_of(const std::vector<Case>& cases, std::size_t i) {
-  return "line " + std::to_string(cases[i].line ? cases[i].line : i + 1);
-}
+std::string line_of(const std::vector<Case>& cases, std::size_t i) { return "line " + std::to_string(cases[i].line); }
 
 }  // namespace
 

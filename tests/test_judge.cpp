@@ -335,13 +335,22 @@ BOOST_AUTO_TEST_CASE(plugin_crash_keeps_earlier_answers) {
   const Run r = s.run(kCertcyl + " judge --plugin " CERTCYL_PLUGIN_CRASH " --query line_cylinder --size tiny");
   BOOST_TEST(r.status == 1);
   BOOST_TEST(r.err.find("plugin crashed on line 5 (signal 11") != std::string::npos, r.err);
-  long judged = 0;
+  long judged = 0, errors = 0;
   for (const auto& [key, row] : families_csv(s.dir / "results/judge/families.csv"))
-    if (key.second != "all") judged += count(row, "cases");
+    if (key.second != "all") judged += count(row, "cases"), errors += count(row, "error");
   BOOST_TEST(judged == 4);
+  BOOST_TEST(errors == 1);  // the negative return, counted
   BOOST_TEST(slurp(s.dir / "results/judge/summary.txt").find(", 4 of ") != std::string::npos);
   // A plugin exporting no query of the cases is an error.
   const Run none = s.run(kCertcyl + " judge --plugin " CERTCYL_PLUGIN_CRASH " --query cylinder_cylinder --size tiny");
   BOOST_TEST(none.status == 1);
   BOOST_TEST(none.err.find("exports none of the cases' queries") != std::string::npos, none.err);
+  // Line numbers are those of the cases file when there is one.
+  BOOST_TEST_REQUIRE(s.run(kCertcyl + " cases --query line_cylinder --family rim --size 6 > cases.jsonl").status == 0);
+  std::ofstream(s / "cases.jsonl", std::ios::app) << "\n\n";
+  const std::string rim = slurp(s / "cases.jsonl");
+  std::ofstream(s / "spaced.jsonl") << "\n" << rim;
+  const Run spaced = s.run(kCertcyl + " judge --plugin " CERTCYL_PLUGIN_CRASH " --cases spaced.jsonl");
+  BOOST_TEST(spaced.err.find("plugin crashed on line 6 (signal 11") != std::string::npos, spaced.err);
+  BOOST_TEST(spaced.err.find("case 'line_cylinder/rim/4'") != std::string::npos, spaced.err);
 }

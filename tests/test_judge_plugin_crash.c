@@ -1,5 +1,5 @@
-/* A plugin for tests/test_judge.cpp: answers line queries "separated" and dies by SIGSEGV on its
- * fifth call, as a buggy plugin would. */
+/* A plugin for tests/test_judge.cpp: answers line queries "separated", fails (-1) on its second
+ * call and dies by SIGSEGV on its fifth, as a buggy plugin would. */
 #include <certcyl/plugin.h>
 
 #include <signal.h>
@@ -9,6 +9,7 @@ const char* certcyl_plugin_name(void) { return "crashes_on_fifth"; }
 int certcyl_plugin_line_cylinder(const double origin[3], const double direction[3], const double c[7], double t[2]) {
   static int calls = 0;
   (void)origin, (void)direction, (void)c, (void)t;
-  if (++calls == 5) raise(SIGSEGV);
+  if (++calls == 2) return -1;
+  if (calls == 5) raise(SIGSEGV);
   return CERTCYL_SEPARATED;
 }
