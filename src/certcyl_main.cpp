@@ -101,7 +101,8 @@ int main(int argc, char** argv) {
       "seed gives the same scene on every machine. Writes the scene JSON to standard output.");
   make_scene->add_option("--cylinders", scene_spec.cylinders, "Number of cylinders (default 100000)")
       ->check(CLI::Range(1, 100000000));
-  make_scene->add_option("--seed", scene_spec.seed, "Random seed (default 1)");
+  make_scene->add_option("--seed", scene_spec.seed, "Random seed (default 1)")
+      ->check(CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 0, UINT64_MAX); }, "UINT64"));
   make_scene->add_option("--neighbours", scene_spec.neighbours, "Mean number of boxes meeting a cylinder's box (default 8)")
       ->check(CLI::Range(0.01, 1000.0));
   make_scene->add_option("--touching", scene_spec.touching_share, "Share of cylinders in exactly touching pairs (default 0.02)")

@@ -2,8 +2,8 @@
 // the command fails: every option and configuration key with a wrong type, a value out of range
 // (never truncated or wrapped), an unknown method or family, a folder name leaving --out, a
 // missing or malformed file, each with its exact message and no results folder; and, through the
-// binary, option values that would wrap, standard output on a full device (/dev/full) and a
-// merged file on a full device, each a message and exit status 1.
+// binary, option values that would wrap (study and make-scene), standard output on a full device
+// (/dev/full) and a merged file on a full device, each a message and exit status 1.
 #define BOOST_TEST_MODULE study_config
 #include <boost/test/unit_test.hpp>
 
@@ -193,6 +193,10 @@ BOOST_AUTO_TEST_CASE(command_line_values_never_wrap) {
   r = run("study --threads -1 --no-plots");
   BOOST_TEST(r.status == 1);
   BOOST_TEST(r.err.rfind("--threads: expected an integer in [0, 1024], got '-1'\n", 0) == 0, r.err);
+  // The scene generator's seed likewise (it wrapped -1 to 2^64 - 1).
+  r = run("make-scene --cylinders 2 --seed -1 > /dev/null");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.rfind("--seed: expected an integer in [0, 18446744073709551615], got '-1'\n", 0) == 0, r.err);
   r = run("study --shard 1/x --no-plots --out '" + (root / "out").string() + "'");
   BOOST_TEST(r.status == 1);
   BOOST_TEST(r.err == "certcyl: --shard: expected i/n with integers 0 <= i < n <= 100000, got '1/x'\n");
