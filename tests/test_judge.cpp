@@ -96,7 +96,8 @@ long count(const std::map<std::string, std::string>& row, const std::string& col
 
 BOOST_AUTO_TEST_CASE(cases_are_query_lines_with_their_certified_answers) {
   Scratch s;
-  for (const std::string q : {"line_cylinder", "segment_cylinder", "cylinder_cylinder"}) {
+  for (const study::Query query : study::kQueries) {
+    const std::string q(study::to_string(query));
     const Run cases = s.run(kCertcyl + " cases --query " + q + " --size tiny > cases.jsonl");
     BOOST_TEST_REQUIRE(cases.status == 0, cases.err);
     const Run answers = s.run(kCertcyl + " query < cases.jsonl");
