@@ -2,7 +2,10 @@
 // lines carrying their certified answer, gap, family and k in "meta"; and reading them back.
 #include "cases.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <istream>
+#include <limits>
 #include <ostream>
 #include <set>
 #include <stdexcept>

@@ -2,7 +2,9 @@
 // method's answers (an answers file, a co-process or a plugin), and the results folder.
 #include "judge.hpp"
 
+#include <algorithm>
 #include <fstream>
+#include <optional>
 #include <stdexcept>
 
 #include "judge_internal.hpp"
@@ -19,6 +21,7 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
 
     std::vector<Case> cases;
     if (!o.cases_file.empty()) {
+      if (!o.spec.query.empty() || !o.spec.families.empty()) throw std::invalid_argument("--cases excludes --query and --family");
       std::ifstream in(o.cases_file);
       if (!in) throw std::runtime_error("--cases: cannot read '" + o.cases_file + "'");
       cases = read_cases(in, o.cases_file);

@@ -3,9 +3,11 @@
 // with a 95% Wilson interval of the failure rate (failures: the study's disagreements, false
 // positives and false negatives, among the certified cases), the counterexamples, and the
 // summary table.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
