@@ -29,7 +29,12 @@ void clear_refusal(const std::string& what) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const fs::path root = fs::temp_directory_path() / ("certcyl_fuzz_merge_" + std::to_string(::getpid()));
+  // One folder per process, removed when the fuzzer exits.
+  static const struct TempFolder {
+    fs::path path = fs::temp_directory_path() / ("certcyl_fuzz_merge_" + std::to_string(::getpid()));
+    ~TempFolder() { fs::remove_all(path); }
+  } temp;
+  const fs::path& root = temp.path;
   const fs::path shard = root / "shard-0-of-2";
   fs::remove_all(root);
   fs::create_directories(shard);

@@ -28,7 +28,12 @@ void check(bool ok, const std::string& what) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const std::filesystem::path file = std::filesystem::temp_directory_path() / ("certcyl_fuzz_config_" + std::to_string(::getpid()) + ".json");
+  // One file per process, removed when the fuzzer exits.
+  static const struct TempFile {
+    std::filesystem::path path = std::filesystem::temp_directory_path() / ("certcyl_fuzz_config_" + std::to_string(::getpid()) + ".json");
+    ~TempFile() { std::filesystem::remove(path); }
+  } temp;
+  const std::filesystem::path& file = temp.path;
   std::ofstream(file, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   cli::StudyOptions o;
   o.config_file = file.string();
