@@ -26,7 +26,6 @@ void install_interrupt_handlers() {
   sa.sa_flags = 0;
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
-  std::signal(SIGPIPE, SIG_IGN);
 }
 
 int interrupt_signal() { return g_signal.load(); }

@@ -5,7 +5,8 @@
 // so the signal ends the process at once (the lines read but not yet answered are dropped).
 // Otherwise it only raises a flag: the command finishes the lines in progress, writes every
 // complete answered line, flushes, and exits with 128 + the signal's number (130, 143).
-// SIGPIPE is ignored, so a closed output is a write error with a message, not a silent death.
+// (main() ignores SIGPIPE for every command, so a closed output is a write error with a
+// message, not a silent death.)
 #pragma once
 
 namespace certcyl::cli {
