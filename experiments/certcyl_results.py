@@ -1,0 +1,98 @@
+"""Reading a results folder of `certcyl study` or `certcyl judge`: what the scripts of experiments/
+and paper/ share.
+
+    sys.path.insert(0, "<source>/experiments"); import certcyl_results as cr
+
+  read_csv(path)          rows of a CSV file as dicts; every path read is kept in READ (for the
+                          manifests that tie figures and tables to the files they come from)
+  sha256(path)            hex SHA-256 of a file
+  fnum(s)                 a CSV field as a float, NaN when empty
+  wilson(k, n)            the 95% Wilson score interval of k successes in n trials
+  upper_median, percentile
+  OUTCOMES, FAILURES      the study's outcome names; those counted as failures (FP + FN)
+  split_method(m)         "shene_as_written/double" -> ("shene_as_written", "double")
+  method_label(m)         the same for a reader: "shene (as written), double"
+  QUERY_TITLES            query name -> short title
+Pure standard library (no numpy, no matplotlib), so that any script may import it.
+"""
+import csv
+import hashlib
+import math
+
+READ = []  # every file read through read_csv or note_read, in order
+
+OUTCOMES = ("agree", "false_positive", "false_negative", "class_mismatch", "undecided", "error", "uncertified")
+FAILURES = ("false_positive", "false_negative")
+
+QUERY_TITLES = {
+    "line_cylinder": "line",
+    "ray_cylinder": "ray",
+    "segment_cylinder": "segment",
+    "line_elliptic_cylinder": "line, elliptic cylinder",
+    "triangle_cylinder": "triangle",
+    "cylinder_cylinder": "cylinder pair",
+}
+
+
+def sha256(path):
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def note_read(path):
+    READ.append(path)
+
+
+def read_csv(path):
+    READ.append(path)
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def fnum(s):
+    if s in ("", None):
+        return math.nan
+    return float(s)
+
+
+def wilson(k, n, z=1.959963984540054):
+    """The Wilson score interval (lo, hi) of the proportion k/n at the confidence of z (95% by
+    default); (0, 1) when n is 0."""
+    if n <= 0:
+        return 0.0, 1.0
+    p = k / n
+    denom = 1 + z * z / n
+    centre = (p + z * z / (2 * n)) / denom
+    half = z / denom * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
+    return max(0.0, centre - half), min(1.0, centre + half)
+
+
+def upper_median(values):
+    v = sorted(values)
+    return v[len(v) // 2] if v else math.nan
+
+
+def percentile(values, p):
+    """Nearest-rank percentile."""
+    v = sorted(values)
+    if not v:
+        return math.nan
+    k = max(0, min(len(v) - 1, math.ceil(p / 100.0 * len(v)) - 1))
+    return v[k]
+
+
+def split_method(m):
+    """A method's algorithm and number type: "eberly_triangle/gmpfr<113>" -> ("eberly_triangle",
+    "gmpfr<113>"); ("name", "") for a method without a number type (a judged program)."""
+    base, _, nt = m.partition("/")
+    return base, nt
+
+
+def method_label(m):
+    base, nt = split_method(m)
+    if base.endswith("_as_written"):
+        base = base[: -len("_as_written")] + " (as written)"
+    return f"{base}, {nt.replace('_', ' ')}" if nt else base
