@@ -139,7 +139,7 @@ void print_profile(std::ostream& out, const Stats& s) {
   for (const auto& [kind, p] : s.profile) total += p.case_seconds, all.merge(p);
   out << "profile (wall time measured in each thread, summed over the threads):\n"
       << "  kind | cases | share of time | ms per case | query / recheck / other % | query stages midpoints/fast/optimiser/refine/"
-         "touching_exact/gmpfr % | evaluations decided by midpoints/fast/optimiser/refine/touching_exact/gmpfr/none | exact checks per evaluation\n";
+         "touching_exact/gmpfr/ellipsoid % | evaluations decided by midpoints/fast/optimiser/refine/touching_exact/gmpfr/ellipsoid/none | exact checks per evaluation\n";
   std::vector<std::pair<std::string, KindProfile>> rows(s.profile.begin(), s.profile.end());
   std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.second.case_seconds > b.second.case_seconds; });
   rows.emplace_back("all", all);

@@ -36,6 +36,7 @@ ojson cylinder_cylinder_json(const CylinderCylinderResult& r) {
   }
   if (r.answer == Answer::undecided) cert["phi_bounds"] = ojson::array({gap.phi_lower, gap.phi_upper});
   if (r.gmpfr_precision) cert["gmpfr_precision"] = r.gmpfr_precision;
+  if (r.ellipsoid_precision) cert["ellipsoid_precision"] = r.ellipsoid_precision;
   out["certificate"] = cert;
   return out;
 }

@@ -31,7 +31,7 @@ std::size_t rank(const std::string& name, const std::array<E, N>& values) {
 constexpr std::array<CylinderStage, kCylinderStages + 1> kStages{CylinderStage::midpoints, CylinderStage::fast_path,
                                                                   CylinderStage::optimiser, CylinderStage::refine,
                                                                   CylinderStage::touching_exact, CylinderStage::gmpfr,
-                                                                  CylinderStage::none};
+                                                                  CylinderStage::ellipsoid, CylinderStage::none};
 constexpr std::array<CylinderArithmetic, 4> kArithmetics{CylinderArithmetic::static_filter, CylinderArithmetic::interval,
                                                          CylinderArithmetic::exact, CylinderArithmetic::none};
 

@@ -17,7 +17,7 @@
 //                                     intervals, which refuse to answer rather than guess)
 //   NumberTraits<NT>::name()         a printable name ("double", "Gmpfr<113>", ...)
 //
-// Types: double, long double, CGAL::Interval_nt<false>, CGAL::Gmpq, CGAL::Mpzf, CGAL::Gmpfr,
+// Types: double, long double, CGAL::Interval_nt<false>, CGAL::Gmpq, CGAL::Gmpz, CGAL::Mpzf, CGAL::Gmpfr,
 // CGAL::Lazy_exact_nt<CGAL::Gmpq>, CORE::Expr, and QD's dd_real (double-double, 106 bits).
 //
 // Pitfalls this layer absorbs (design note, section 2):
@@ -145,6 +145,19 @@ struct NumberTraits<CGAL::Gmpq> {
   static std::string name() { return "Gmpq"; }
   static CGAL::Gmpq from_rational(const Rational& q) { return q; }
   static CGAL::Gmpq constant(long k) { return CGAL::Gmpq(k); }
+};
+
+// Integers: a ring without the exponent limit of Mpzf and without Gmpq's canonicalisation, for
+// exact evaluation on input scaled to integers (from_rational rejects anything else).
+template <>
+struct NumberTraits<CGAL::Gmpz> {
+  static constexpr bool is_exact = true, is_certified = true, has_sqrt = false, is_field = false;
+  static std::string name() { return "Gmpz"; }
+  static CGAL::Gmpz from_rational(const Rational& q) {
+    if (mpz_cmp_ui(mpq_denref(q.mpq()), 1) != 0) throw InvalidInput("", "Gmpz cannot represent the non-integer " + to_exact_string(q));
+    return q.numerator();
+  }
+  static CGAL::Gmpz constant(long k) { return CGAL::Gmpz(k); }
 };
 
 template <>

@@ -62,6 +62,16 @@
 //                    input's span in bits); its direction
 //                    and point, converted exactly to rationals, are checked in Gmpq, and its
 //                    direction is reconstructed as a candidate normal for a touching proof.
+//   ellipsoid        the complete stage (detail/cylinder_ellipsoid.hpp): the central-cut ellipsoid
+//                    method on the open convex sets of interior points and of separating
+//                    directions, with exact rational cuts (a violated constraint's gradient; a
+//                    rational linear minorant of phi), each centre checked exactly, at 128, 256,
+//                    ... bits, each precision in a fast floating-point run and in the rounded run
+//                    of Grotschel, Lovasz and Schrijver, which provably reaches a certificate once
+//                    the precision is high enough. With the touching stage complete for touching
+//                    pairs, the query decides every valid input (the completeness theorem of the
+//                    paper). Only a caller's max_precision or prove_touching = false leaves it
+//                    bounded, and the answer undecided when no proof was found within it.
 // Undecided results carry the certified bounds gap().phi_lower <= phi* <= gap().phi_upper, so
 // |phi* - 1| <= gap().distance_bound().
 //
@@ -89,6 +99,7 @@
 #include "certcyl/answer.hpp"
 #include "certcyl/certified/detail/cylinder_active_set.hpp"
 #include "certcyl/certified/detail/cylinder_certificates.hpp"
+#include "certcyl/certified/detail/cylinder_ellipsoid.hpp"
 #include "certcyl/certified/detail/cylinder_optimiser.hpp"
 #include "certcyl/certified/detail/cylinder_quick_filter.hpp"
 #include "certcyl/certified/detail/cylinder_static_filter.hpp"
@@ -98,8 +109,8 @@
 
 namespace certcyl {
 
-enum class CylinderStage { midpoints, fast_path, optimiser, refine, touching_exact, gmpfr, none };
-inline constexpr std::size_t kCylinderStages = 6;  // stages that can decide (none excluded)
+enum class CylinderStage { midpoints, fast_path, optimiser, refine, touching_exact, gmpfr, ellipsoid, none };
+inline constexpr std::size_t kCylinderStages = 7;  // stages that can decide (none excluded)
 
 inline constexpr std::string_view to_string(CylinderStage s) {
   switch (s) {
@@ -109,6 +120,7 @@ inline constexpr std::string_view to_string(CylinderStage s) {
     case CylinderStage::refine: return "refine";
     case CylinderStage::touching_exact: return "touching_exact";
     case CylinderStage::gmpfr: return "gmpfr";
+    case CylinderStage::ellipsoid: return "ellipsoid";
     case CylinderStage::none: return "none";
   }
   return "none";
@@ -139,13 +151,16 @@ inline constexpr std::string_view to_string(CylinderArithmetic a) {
 enum class GapEnclosure { off, on_access, in_query };
 
 struct CylinderCylinderOptions {
-  // The Gmpfr stage runs at doubling precisions, from 128 bits or, for input that spans many
-  // binades, from the first power of two above that span, while the precision is at most this.
-  // 0 (the default) sets the limit from the input: 4 s + 1024 bits, s the span in binades from
-  // the smallest radius or coordinate of an axis or of T to the largest input number (at most
-  // about 2,100 for binary64; the digits of a rational do not count). This limit is a choice
-  // measured to suffice on the wide-range families, not a proved bound. A negative value skips
-  // the stage. Only a caller's explicit limit is a resource limit in the sense of "undecided".
+  // The resource limit of the arbitrary-precision stages, in bits. 0 (the default): none, and
+  // the query decides every valid input. The Gmpfr stage (a heuristic) then runs at doubling
+  // precisions from 128 bits, or from the first power of two above the number of binades s the
+  // geometry spans (from the smallest radius or coordinate of an axis or of T to the largest
+  // input number; the digits of a rational do not count), up to 4 s + 1024 bits, a measured
+  // choice; the ellipsoid stage after it runs at 128, 256, ... bits until it proves an answer,
+  // which it provably does for every pair that does not touch (detail/cylinder_ellipsoid.hpp;
+  // touching pairs are decided before it). A positive value stops both stages above that
+  // precision, and a negative value skips both: the answer may then be undecided, the only way
+  // it can be.
   long max_precision = 0;
   // Try the exact touching proofs (stages touching_exact and the reconstruction in gmpfr).
   bool prove_touching = true;
@@ -178,6 +193,7 @@ struct CylinderCylinderCounters {
   std::uint32_t exact_checks = 0;         // checks decided in Gmpq
   std::uint32_t newton_steps = 0;         // optimiser steps, all precisions
   std::uint32_t touching_candidates = 0;  // candidate normals given to the touching proof
+  std::uint32_t ellipsoid_steps = 0;      // steps of the ellipsoid stage's runs
 };
 
 // A certified enclosure phi_lower <= phi* <= phi_upper, and so of the signed gap log(phi*).
@@ -233,7 +249,8 @@ struct CylinderCylinderResult {
   // the query.
   CylinderGap gap() const;
 
-  long gmpfr_precision = 0;  // highest Gmpfr precision used, 0 if none
+  long gmpfr_precision = 0;      // highest Gmpfr precision used, 0 if none
+  long ellipsoid_precision = 0;  // highest precision of the ellipsoid stage, 0 if it did not run
   CylinderCylinderCounters counters;
   std::array<double, kCylinderStages> stage_seconds{};  // indexed by CylinderStage; zero unless time_stages
 
@@ -260,12 +277,6 @@ struct CylinderCylinderResult {
 };
 
 namespace detail {
-
-inline Rational to_rational(const CGAL::Gmpfr& x) {
-  Rational q;
-  mpfr_get_q(q.mpq(), x.fr());
-  return q;
-}
 
 
 // Closest points of the segments [a0, a0 + e0] and [a1, a1 + e1] (double; candidates only), or,
@@ -397,7 +408,7 @@ class CylinderCylinderSolver {
     if (optimiser()) return finish();
     if (options_.refine && refine()) return finish();
     if (options_.prove_touching && touching_exact()) return finish();
-    if (gmpfr()) return finish();
+    if (arbitrary_precision()) return finish();
     result_.stage = CylinderStage::none;
     return finish();
   }
@@ -1277,39 +1288,137 @@ class CylinderCylinderSolver {
     return exact_overlaps(cj.p0 + u * Aj);
   }
 
-  bool gmpfr() {
+  // Stages gmpfr and ellipsoid, interleaved: round j runs the Gmpfr optimiser at first 2^j bits
+  // (first the power of two above the input's span, up to its limit) and the ellipsoid stage at
+  // 128 2^j bits, the lower precision first, so that neither waits on the other's expensive
+  // rounds. The ellipsoid rounds go on until an answer is proved (or up to a caller's limit).
+  bool arbitrary_precision() {
     begin(CylinderStage::gmpfr);
     if (options_.max_precision < 0) return pass();
     if (exact_candidates()) return true;
     const long span = input_span_bits();
-    const long limit = options_.max_precision > 0 ? options_.max_precision : 4 * span + 1024;
+    const long heuristic_limit = options_.max_precision > 0 ? options_.max_precision : 4 * span + 1024;
     long first = 128;
     while (first < span) first *= 2;
-    for (long precision = first; precision <= limit; precision *= 2) {
-      result_.gmpfr_precision = precision;
-      if (segment_witness(precision) || axis_witness(precision, 0) || axis_witness(precision, 1)) return true;
-      Vec3<Rational> D;
-      Point3<Rational> X;
-      {
-        GmpfrPrecision scope(precision);
-        const auto to_f = [](const Rational& q) { return nt::from_rational<CGAL::Gmpfr>(q); };
-        const CylinderPair<CGAL::Gmpfr> g = CylinderPair<CGAL::Gmpfr>::make(exact_cylinder(0).map(to_f), exact_cylinder(1).map(to_f));
-        PlaneProblem<CGAL::Gmpfr> problem(g, static_cast<int>(precision * 4 / 5));
-        const PlaneMinimum<CGAL::Gmpfr> m = problem.minimise(true, static_cast<int>(precision * 3 / 5));
-        result_.counters.newton_steps += static_cast<std::uint32_t>(m.iterations);
-        D = m.direction.map([](const CGAL::Gmpfr& x) { return to_rational(x); });
-        X = m.point.map([](const CGAL::Gmpfr& x) { return to_rational(x); });
-      }
-      bound_by_direction(to_iv(D));
-      bound_by_point(world_iv(X));
-      if (exact_separates(D) || exact_overlaps(std::move(X))) return true;
-      if (options_.prove_touching && !(D.x == 0 && D.y == 0 && D.z == 0)) {
-        CGAL::Gmpz two_power;
-        mpz_ui_pow_ui(two_power.mpz(), 2, static_cast<unsigned long>(precision / 2));
-        if (try_touching(reconstruct_direction(D, Rational(CGAL::Gmpz(1), two_power)))) return true;
-      }
+    long limit = options_.max_precision;  // of the ellipsoid stage; 0: none
+    if (limit == 0 && !options_.prove_touching) limit = heuristic_limit;
+    const CylinderPair<Rational>& e = exact();
+    const bool ellipsoid_on = !(e.T.x == 0 && e.T.y == 0 && e.T.z == 0);  // T = 0 was decided by the midpoints stage
+    for (int j = 0; j < 62; ++j) {
+      const long ph = first << j, pe = 128L << j;
+      const bool heuristic = ph <= heuristic_limit, complete = ellipsoid_on && (limit == 0 || pe <= limit);
+      if (!heuristic && !complete) break;
+      if (heuristic && ph <= pe && gmpfr_round(ph)) return true;
+      if (complete && ellipsoid_round(pe)) return true;
+      if (heuristic && ph > pe && gmpfr_round(ph)) return true;
     }
     return pass();
+  }
+
+  void switch_stage(CylinderStage s) {
+    if (stage_ == s) return;
+    end();
+    begin(s);
+  }
+
+  bool gmpfr_round(long precision) {
+    switch_stage(CylinderStage::gmpfr);
+    result_.gmpfr_precision = precision;
+    if (segment_witness(precision) || axis_witness(precision, 0) || axis_witness(precision, 1)) return true;
+    Vec3<Rational> D;
+    Point3<Rational> X;
+    {
+      GmpfrPrecision scope(precision);
+      const auto to_f = [](const Rational& q) { return nt::from_rational<CGAL::Gmpfr>(q); };
+      const CylinderPair<CGAL::Gmpfr> g = CylinderPair<CGAL::Gmpfr>::make(exact_cylinder(0).map(to_f), exact_cylinder(1).map(to_f));
+      PlaneProblem<CGAL::Gmpfr> problem(g, static_cast<int>(precision * 4 / 5));
+      const PlaneMinimum<CGAL::Gmpfr> m = problem.minimise(true, static_cast<int>(precision * 3 / 5));
+      result_.counters.newton_steps += static_cast<std::uint32_t>(m.iterations);
+      D = m.direction.map([](const CGAL::Gmpfr& x) { return to_rational(x); });
+      X = m.point.map([](const CGAL::Gmpfr& x) { return to_rational(x); });
+    }
+    bound_by_direction(to_iv(D));
+    bound_by_point(world_iv(X));
+    gmpfr_direction_ = D;
+    gmpfr_point_ = X;
+    if (exact_separates(D) || exact_overlaps(std::move(X))) return true;
+    if (options_.prove_touching && !(D.x == 0 && D.y == 0 && D.z == 0)) {
+      CGAL::Gmpz two_power;
+      mpz_ui_pow_ui(two_power.mpz(), 2, static_cast<unsigned long>(precision / 2));
+      if (try_touching(reconstruct_direction(D, Rational(CGAL::Gmpz(1), two_power)))) return true;
+    }
+    return false;
+  }
+
+  // ---- stage ellipsoid ----------------------------------------------------------------------------
+  // One round at p bits (detail/cylinder_ellipsoid.hpp): fast runs on the points and on the
+  // directions (up to 12 p and 6 p steps), first from the last Gmpfr round's point and direction
+  // (good to about half its precision) inside a ball of radius 2^-(its precision / 2), then from
+  // the unit ball; then the rounded runs of the proof (p / 8 steps each). With the rounds at
+  // p = 128, 256, ... it ends for every pair that does not touch; without touching proofs
+  // (prove_touching off) a touching pair would never end it, so it then stops at the Gmpfr
+  // stage's limit, as it does at a caller's max_precision.
+  bool ellipsoid_round(long p) {
+    switch_stage(CylinderStage::ellipsoid);
+    result_.ellipsoid_precision = p;
+    if (!point_problem_) {
+      integer_pair();
+      point_problem_.emplace(*integer_);
+      direction_problem_.emplace(*integer_);
+    }
+    if (gmpfr_point_) point_start_ = point_problem_->coordinates(*gmpfr_point_);
+    if (gmpfr_direction_) direction_start_ = direction_problem_->coordinates(*gmpfr_direction_);
+    const PointProblem& points = *point_problem_;
+    const DirectionProblem& directions = *direction_problem_;
+    const long warm = result_.gmpfr_precision / 2;
+    if (point_start_ && p > warm && point_run(points, EllipsoidMode::fast, p, 12 * p, &*point_start_, warm)) return true;
+    if (direction_start_ && p > warm && direction_run(directions, EllipsoidMode::fast, p, 6 * p, &*direction_start_, warm)) return true;
+    return point_run(points, EllipsoidMode::fast, p, 12 * p) || direction_run(directions, EllipsoidMode::fast, p, 6 * p) ||
+           point_run(points, EllipsoidMode::rounded, p, p / 8) || direction_run(directions, EllipsoidMode::rounded, p, p / 8);
+  }
+
+  bool point_run(const PointProblem& points, EllipsoidMode mode, long p, long steps, const std::array<Rational, 3>* start = nullptr,
+                 long j = 0) {
+    return run_ellipsoid<3>(mode, p, steps, result_.counters.ellipsoid_steps,
+                            [&](const DyadicVector<3>& y, long bits) -> std::optional<EllipsoidCut<3>> {
+                              std::optional<EllipsoidCut<3>> k = points.cut(y, bits);
+                              if (k) return k;
+                              Point3<Rational> X = points.point(y);
+                              bound_by_point(world_iv(X));
+                              if (exact_overlaps(std::move(X))) return std::nullopt;
+                              return EllipsoidCut<3>{};  // not reached (cut() checked the same constraints): ends the run
+                            },
+                            start, j);
+  }
+
+  // Rounded runs refine the minorant until it cuts the centre off by more than 2^(-p/4) below
+  // 1 (it converges to phi(D_y) >= 1), as their proof needs; the cap on its precision is a
+  // safeguard that cannot change an answer.
+  bool direction_run(const DirectionProblem& directions, EllipsoidMode mode, long p, long steps,
+                     const std::array<Rational, 2>* start = nullptr, long j = 0) {
+    return run_ellipsoid<2>(mode, p, steps, result_.counters.ellipsoid_steps,
+                            [&](const DyadicVector<2>& y, long bits) -> std::optional<EllipsoidCut<2>> {
+                              long sigma = 0;
+                              const Vec3<CGAL::Gmpz> Ds = directions.direction(y, sigma);
+                              if (separation_sign(integer_pair(), Ds) == CGAL::POSITIVE) {
+                                Vec3<Rational> D = Ds.map([](const CGAL::Gmpz& x) { return Rational(x); });
+                                bound_by_direction(to_iv(D));
+                                if (exact_separates(std::move(D))) return std::nullopt;
+                                return EllipsoidCut<2>{};  // not reached: ends the run
+                              }
+                              if (mode == EllipsoidMode::fast) return directions.minorant_cut(Ds, sigma, bits);
+                              bool cuts_off = false;
+                              for (long b = bits;; b *= 2) {
+                                EllipsoidCut<2> k = directions.minorant_cut(Ds, sigma, b, p / 4, &cuts_off);
+                                if (cuts_off || b > 64 * p) return k;
+                              }
+                            },
+                            start, j);
+  }
+
+  const CylinderPair<CGAL::Gmpz>& integer_pair() {
+    if (!integer_) integer_.emplace(exact());
+    return integer_->d;
   }
 
   CylinderCylinderOptions options_;
@@ -1328,6 +1437,13 @@ class CylinderCylinderSolver {
   std::optional<CylinderPair<Interval>> iv_;
   std::optional<CylinderPair<Rational>> ex_;
   std::optional<CylinderPair<CGAL::Mpzf>> mpzf_;
+  std::optional<IntegerPair> integer_;  // the input scaled to integers (ellipsoid stage)
+  std::optional<Vec3<Rational>> gmpfr_direction_;  // the last Gmpfr round's direction and point
+  std::optional<Point3<Rational>> gmpfr_point_;
+  std::optional<PointProblem> point_problem_;  // the ellipsoid stage's problems, and warm starts
+  std::optional<DirectionProblem> direction_problem_;
+  std::optional<std::array<Rational, 3>> point_start_;
+  std::optional<std::array<Rational, 2>> direction_start_;
   std::optional<Vec3<double>> optimum_;
   std::optional<Point3<double>> optimum_point_;
   double optimum_value_ = std::numeric_limits<double>::infinity();
