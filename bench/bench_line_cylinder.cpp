@@ -225,6 +225,31 @@ void BM_certified_decision_interval_first(benchmark::State& state) {
   state.counters["exact"] = static_cast<double>(counter.exact) / static_cast<double>(counter.calls);
 }
 
+// The decision as it was before the double-double stage: the static double stage alone, then
+// the skeleton in Interval_nt and Gmpq for whatever it leaves undecided; side by side with
+// BM_family in one run (argument: the family).
+void BM_decision_before_double_double(benchmark::State& state) {
+  const std::vector<Query>& f = family(static_cast<int>(state.range(0)));
+  std::size_t i = 0;
+  FilterCounter counter;
+  for (auto _ : state) {
+    const Query& q = f[i];
+    if (++i == f.size()) i = 0;
+    const detail::LineInput<double> li{q.origin, q.second, q.range == LineRange::segment, q.range};
+    detail::StaticCircularSigns s(q.origin, q.second, li.second_is_point, q.cyl);
+    if (s.usable()) {
+      const detail::LineShape shape = detail::line_shape_from(s, q.range);
+      if (!s.undecided()) {
+        benchmark::DoNotOptimize(shape);
+        continue;
+      }
+    }
+    benchmark::DoNotOptimize(
+        filtered_call([&]<class NT>() { return detail::line_shape(detail::line_quadric_in<NT>(li, q.cyl), li.range); }, counter));
+  }
+  state.SetLabel(family_names[state.range(0)]);
+}
+
 void BM_certified_full(benchmark::State& state) {
   const auto& in = instances(state.range(0) != 0);
   std::size_t i = 0;
@@ -352,6 +377,7 @@ void BM_gullotti_gmpfr113(benchmark::State& state) {
 
 // Argument: 0 = random lines, 1 = near-tangent lines (axis-aligned); BM_family: every family.
 BENCHMARK(BM_family)->DenseRange(0, kFamilies - 1);
+BENCHMARK(BM_decision_before_double_double)->DenseRange(0, kFamilies - 1);
 BENCHMARK(BM_robust_double)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_decision)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_decision_interval_first)->Arg(0)->Arg(1);
