@@ -1,15 +1,26 @@
 // Line against circular cylinder: ns per query for each method and number type, on random
-// lines and on near-tangent lines (distance to the axis within a few ulps of the radius).
-// The certified query is measured twice: the decision alone (answer and features, filtered:
-// semi-static double stage, Interval_nt, Gmpq; the fraction each stage decided is reported as
-// static / interval / exact) and the full result (exact endpoints and their correctly rounded
-// doubles), with double and with Rational input (binary64 values, so the same path after a
-// check). Run the three side by side (--benchmark_filter='robust|certified') and take the
-// ratios from one run: the machine's load moves all figures together.
+// lines and on the hard families (within a few ulps of a tangency, a rim or a cap plane, axis-
+// aligned or in any orientation; lines, rays and segments).
+// The certified query is measured twice: the decision alone (answer and features: adaptive
+// polynomial signs in double, double-double, Mpzf; the fraction decided at each depth is
+// reported as static / dd / interval / exact) and the full result (exact endpoints and their
+// correctly rounded doubles), with double and with Rational input (binary64 values, so the
+// same path after a check). Run side by side (--benchmark_filter='robust|certified') and take
+// the ratios from one run: the machine's load moves all figures together.
+// BM_family/<k> reports, per family, Google Benchmark's mean (cycling through the instances)
+// and, per instance, the median of 3 batches of 4 consecutive calls (the clock's resolution is
+// coarse next to a 40 ns query), as median_ns, p99_ns and max_ns over the instances, and the
+// family's mean is read against BM_family/0 (random lines) of the same run. Every answer is compared
+// with the Gmpq skeleton; a disagreement makes the run exit non-zero.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <array>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "certcyl/certified/line_cylinder.hpp"
@@ -26,24 +37,141 @@ struct Instance {
   Cylinder<double> cyl;
 };
 
-std::vector<Instance> make_instances(bool near_tangent) {
-  std::mt19937_64 rng(near_tangent ? 2 : 1);
+// The hard families. Every instance is binary64; for the oriented families the feature is
+// computed in double and rounded, then coordinates are moved by 0..3 ulps, so each instance is
+// within a few ulps of the feature (its side is whatever the rounding gives: the Gmpq skeleton
+// says which).
+enum Family : int {
+  kRandom,
+  kTangentAxis,      // vertical axis, x-offset r (rounded) -+ 0..4 ulps (the original family)
+  kTangentOriented,  // any axis, a tangent line (rounded), moved a few ulps
+  kRimOriented,      // any axis, through a rim point, grazing (rounded), moved a few ulps
+  kCapPlaneOriented, // any axis, in a cap plane across the disk (rounded), moved a few ulps
+  kSegmentCapEnd,    // any axis, a segment from inside to a point of a cap plane (rounded)
+  kSegmentWallEnd,   // any axis, a segment from outside to a point of the wall (rounded)
+  kFamilies
+};
+const char* const family_names[kFamilies] = {"random",           "tangent_axis_aligned", "tangent_oriented", "rim_oriented",
+                                              "cap_plane_oriented", "segment_cap_end",   "segment_wall_end"};
+
+// A line-like query of one of the three ranges.
+struct Query {
+  Vec3<double> origin, second;
+  LineRange range = LineRange::line;
+  Cylinder<double> cyl;
+};
+
+detail::LineShape decide(const Query& q, LineStageCounter& c) {
+  switch (q.range) {
+    case LineRange::ray: return certified_line_cylinder_shape(Ray<double>{q.origin, q.second}, q.cyl, c);
+    case LineRange::segment: return certified_line_cylinder_shape(Segment<double>{q.origin, q.second}, q.cyl, c);
+    case LineRange::line: break;
+  }
+  return certified_line_cylinder_shape(Line<double>{q.origin, q.second}, q.cyl, c);
+}
+
+Vec3<double> vcross(const Vec3<double>& a, const Vec3<double>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+Vec3<double> unit(const Vec3<double>& v) {
+  const double n = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+  return {v.x / n, v.y / n, v.z / n};
+}
+
+std::vector<Query> make_family(int family) {
+  std::mt19937_64 rng(100 + family);
   std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<Instance> out;
+  std::uniform_int_distribution<int> ulps(-3, 3);
+  auto rv = [&] { return Vec3<double>{u(rng), u(rng), u(rng)}; };
+  auto nudge = [&](double x) {
+    const int k = ulps(rng);
+    for (int i = 0; i < std::abs(k); ++i) x = std::nextafter(x, k > 0 ? INFINITY : -INFINITY);
+    return x;
+  };
+  auto nudge3 = [&](const Vec3<double>& v) { return Vec3<double>{nudge(v.x), nudge(v.y), nudge(v.z)}; };
+  std::vector<Query> out;
   for (int i = 0; i < 1024; ++i) {
-    const Vec3<double> p0{u(rng), u(rng), u(rng)};
-    if (!near_tangent) {
-      const Cylinder<double> c{p0, {u(rng), u(rng), u(rng)}, 0.25 + std::fabs(u(rng))};
-      out.push_back({{{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}}, c});
-    } else {
-      // Vertical axis; the line passes at x-offset r (rounded) plus -2..2 ulps.
+    Query q;
+    const Vec3<double> p0 = rv();
+    if (family == kRandom) {
+      q.cyl = {p0, rv(), 0.25 + std::fabs(u(rng))};
+      q.origin = rv();
+      q.second = rv();
+      out.push_back(q);
+      continue;
+    }
+    if (family == kTangentAxis) {
       const double r = 0.25 + std::fabs(u(rng));
-      const Cylinder<double> c{p0, {p0.x, p0.y, p0.z + 1}, r};
+      q.cyl = {p0, {p0.x, p0.y, p0.z + 1}, r};
       double off = r;
       for (int k = 0; k < i % 5; ++k) off = std::nextafter(off, i % 2 ? 2.0 : 0.0);
-      out.push_back({{{p0.x + off, p0.y, p0.z + 0.5}, {0, 1, 0.5 * u(rng)}}, c});
+      q.origin = {p0.x + off, p0.y, p0.z + 0.5};
+      q.second = {0, 1, 0.5 * u(rng)};
+      out.push_back(q);
+      continue;
     }
+    // An oriented cylinder and a frame (n, m) perpendicular to its axis, rounded.
+    const Vec3<double> p1 = p0 + rv() * 2.0;
+    const double r = 0.25 + std::fabs(u(rng));
+    q.cyl = {p0, p1, r};
+    const Vec3<double> A = p1 - p0;
+    const Vec3<double> n = unit(vcross(A, rv())), m = unit(vcross(A, n));
+    q.range = static_cast<LineRange>(i % 3);
+    Vec3<double> X, d;
+    switch (family) {
+      case kTangentOriented:  // X on the wall mid-height, d in the tangent plane
+        X = p0 + A * (0.25 + 0.5 * std::fabs(u(rng))) + n * r;
+        d = m + A * (0.5 * u(rng));
+        break;
+      case kRimOriented:  // X on the rim of cap1; d grazes it (outward and towards cap0), or
+                          // (odd i) enters the solid through it
+        X = p1 + n * r;
+        d = n + unit(A) * ((i % 2 ? 1 : -1) * (0.5 + std::fabs(u(rng))));
+        break;
+      case kCapPlaneOriented:  // X in the disk of cap0, d in the cap plane
+        X = p0 + n * (r * u(rng));
+        d = m + n * (0.5 * u(rng));
+        break;
+      case kSegmentCapEnd: {  // from inside to the cap1 plane, inside or outside the disk
+        q.range = LineRange::segment;
+        const Vec3<double> S0 = p0 + A * 0.5 + n * (0.5 * r * u(rng));
+        const Vec3<double> S1 = p1 + m * (2 * r * u(rng));
+        q.origin = S0;
+        q.second = nudge3(S1);
+        q.cyl = {nudge3(p0), p1, r};
+        out.push_back(q);
+        continue;
+      }
+      default: {  // kSegmentWallEnd: from outside to a point of the wall
+        q.range = LineRange::segment;
+        const Vec3<double> S1 = p0 + A * (0.25 + 0.5 * std::fabs(u(rng))) + n * r;
+        q.origin = S1 + n * (1 + std::fabs(u(rng))) + m * u(rng);
+        q.second = nudge3(S1);
+        out.push_back(q);
+        continue;
+      }
+    }
+    const Vec3<double> O = nudge3(X - d * (1 + std::fabs(u(rng))));
+    q.origin = O;
+    q.second = q.range == LineRange::segment ? nudge3(X + d * (1 + std::fabs(u(rng)))) : nudge3(d);
+    out.push_back(q);
   }
+  return out;
+}
+
+const std::vector<Query>& family(int k) {
+  static const std::array<std::vector<Query>, kFamilies> all = [] {
+    std::array<std::vector<Query>, kFamilies> a;
+    for (int f = 0; f < kFamilies; ++f) a[f] = make_family(f);
+    return a;
+  }();
+  return all[k];
+}
+
+// The lines of the random and axis-aligned tangent families, for the methods that take lines.
+std::vector<Instance> make_instances(bool near_tangent) {
+  std::vector<Instance> out;
+  for (const Query& q : family(near_tangent ? kTangentAxis : kRandom)) out.push_back({{q.origin, q.second}, q.cyl});
   return out;
 }
 
@@ -51,6 +179,8 @@ const std::vector<Instance>& instances(bool near_tangent) {
   static const std::vector<Instance> random = make_instances(false), tangent = make_instances(true);
   return near_tangent ? tangent : random;
 }
+
+int disagreements = 0;
 
 void BM_robust_double(benchmark::State& state) {
   const auto& in = instances(state.range(0) != 0);
@@ -64,6 +194,7 @@ void BM_robust_double(benchmark::State& state) {
 void report_stages(benchmark::State& state, const LineStageCounter& c) {
   const double n = static_cast<double>(c.calls);
   state.counters["static"] = static_cast<double>(c.semi_static) / n;
+  state.counters["dd"] = static_cast<double>(c.double_double) / n;
   state.counters["interval"] = static_cast<double>(c.interval) / n;
   state.counters["exact"] = static_cast<double>(c.exact) / n;
 }
@@ -92,6 +223,31 @@ void BM_certified_decision_interval_first(benchmark::State& state) {
         [&]<class NT>() { return detail::line_shape(detail::line_quadric_in<NT>(li, x.cyl), li.range); }, counter));
   }
   state.counters["exact"] = static_cast<double>(counter.exact) / static_cast<double>(counter.calls);
+}
+
+// The decision as it was before the double-double stage: the static double stage alone, then
+// the skeleton in Interval_nt and Gmpq for whatever it leaves undecided; side by side with
+// BM_family in one run (argument: the family).
+void BM_decision_before_double_double(benchmark::State& state) {
+  const std::vector<Query>& f = family(static_cast<int>(state.range(0)));
+  std::size_t i = 0;
+  FilterCounter counter;
+  for (auto _ : state) {
+    const Query& q = f[i];
+    if (++i == f.size()) i = 0;
+    const detail::LineInput<double> li{q.origin, q.second, q.range == LineRange::segment, q.range};
+    detail::StaticCircularSigns s(q.origin, q.second, li.second_is_point, q.cyl);
+    if (s.usable()) {
+      const detail::LineShape shape = detail::line_shape_from(s, q.range);
+      if (!s.undecided()) {
+        benchmark::DoNotOptimize(shape);
+        continue;
+      }
+    }
+    benchmark::DoNotOptimize(
+        filtered_call([&]<class NT>() { return detail::line_shape(detail::line_quadric_in<NT>(li, q.cyl), li.range); }, counter));
+  }
+  state.SetLabel(family_names[state.range(0)]);
 }
 
 void BM_certified_full(benchmark::State& state) {
@@ -123,6 +279,49 @@ void BM_certified_full_rational_input(benchmark::State& state) {
     benchmark::DoNotOptimize(r);
   }
   report_stages(state, counter);
+}
+
+// Nanoseconds of one decision on q: the median of 3 batches of 4 calls.
+double call_ns(const Query& q) {
+  std::array<double, 3> t{};
+  LineStageCounter c;
+  for (double& x : t) {
+    const auto s = std::chrono::steady_clock::now();
+    for (int k = 0; k < 4; ++k) benchmark::DoNotOptimize(decide(q, c));
+    x = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - s).count() / 4;
+  }
+  std::sort(t.begin(), t.end());
+  return t[1];
+}
+
+// One family: Google Benchmark's mean cycling through the instances, and the distribution
+// over instances; the answers checked against the Gmpq skeleton.
+void BM_family(benchmark::State& state) {
+  const std::vector<Query>& f = family(static_cast<int>(state.range(0)));
+  std::size_t i = 0;
+  LineStageCounter counter;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(decide(f[i], counter));
+    if (++i == f.size()) i = 0;
+  }
+  std::vector<double> t;
+  LineStageCounter once;
+  for (const Query& q : f) {
+    t.push_back(call_ns(q));
+    const detail::LineShape s = decide(q, once);
+    const detail::LineInput<double> li{q.origin, q.second, q.range == LineRange::segment, q.range};
+    const detail::LineShape e = detail::line_shape(detail::line_quadric_in<Rational>(li, q.cyl), q.range);
+    if (s.answer != e.answer || s.in != e.in || s.out != e.out) ++disagreements;
+  }
+  std::sort(t.begin(), t.end());
+  state.counters["median_ns"] = t[t.size() / 2];
+  state.counters["p99_ns"] = t[t.size() * 99 / 100];
+  state.counters["max_ns"] = t.back();
+  report_stages(state, once);
+  std::array<int, 4> answers{};
+  for (const Query& q : f) ++answers[static_cast<int>(decide(q, once).answer)];
+  state.counters["separated"] = answers[0], state.counters["touching"] = answers[1], state.counters["overlapping"] = answers[2];
+  state.SetLabel(family_names[state.range(0)]);
 }
 
 template <class NT>
@@ -176,7 +375,9 @@ void BM_gullotti_gmpfr113(benchmark::State& state) {
 
 }  // namespace
 
-// Argument: 0 = random lines, 1 = near-tangent lines.
+// Argument: 0 = random lines, 1 = near-tangent lines (axis-aligned); BM_family: every family.
+BENCHMARK(BM_family)->DenseRange(0, kFamilies - 1);
+BENCHMARK(BM_decision_before_double_double)->DenseRange(0, kFamilies - 1);
 BENCHMARK(BM_robust_double)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_decision)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_decision_interval_first)->Arg(0)->Arg(1);
@@ -193,4 +394,13 @@ BENCHMARK(BM_gullotti_gmpfr113)->Arg(0)->Arg(1);
 BENCHMARK(BM_shene<CORE::Expr>)->Arg(0)->Arg(1);
 BENCHMARK(BM_gullotti<CORE::Expr>)->Arg(0)->Arg(1);
 
-BENCHMARK_MAIN();
+// Google Benchmark's main, and a non-zero exit status when a decision disagreed with the Gmpq
+// skeleton (the smoke run in the tests relies on it).
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  if (disagreements > 0) std::fprintf(stderr, "bench_line_cylinder: %d decisions disagree with the Gmpq skeleton\n", disagreements);
+  return disagreements > 0 ? 1 : 0;
+}

@@ -77,16 +77,27 @@ BOOST_AUTO_TEST_CASE(tangent_line_and_one_ulp_either_side) {
   BOOST_TEST(r.in->nearest < 2.0);
   BOOST_TEST(r.out->nearest > 2.0);
   BOOST_TEST(std::fabs(r.out->nearest - 2.0 - 0x1p-26) < 0x1p-70);
-  // The same in double input: every interval operation is exact on these small integers, so
-  // the filter decides disc = 0 itself.
+  // The same in double input: disc = 0 exactly, which no error bound decides, so its sign is
+  // taken exactly (Mpzf) and the endpoints are the exact tangent point.
   const auto rd = certified_line_cylinder(Line<double>{{-2, 1, 0.5}, {1, 0, 0}}, Cylinder<double>{{0, 0, 0}, {0, 0, 1}, 1});
   BOOST_TEST(to_string(rd.answer) == "touching");
-  BOOST_TEST(rd.counter.exact == 0u);
-  // Radius and offset the binary64 0.1: r^2 is inexact in intervals, so disc = 0 goes exact.
+  BOOST_TEST(rd.in->exact() == "2");
+  BOOST_TEST(to_string(rd.stage) == "exact");
+  BOOST_TEST(rd.counter.exact == 1u);
+  // Radius and offset the binary64 0.1: the same tangency with inexact squares.
   const auto rt = certified_line_cylinder(Line<double>{{-2, 0.1, 0.5}, {1, 0, 0}}, Cylinder<double>{{0, 0, 0}, {0, 0, 1}, 0.1});
   BOOST_TEST(to_string(rt.answer) == "touching");
   BOOST_TEST(rt.in->exact() == "2");
   BOOST_TEST(rt.counter.exact == 1u);
+  // One ulp of 0.1 either side of that tangency (the side by construction): no exact zero,
+  // so the double-double escalation decides, without exact arithmetic.
+  for (const double y : {std::nextafter(0.1, 1.0), std::nextafter(0.1, 0.0)}) {
+    // Not parallel to the caps (d.A = 0 would be an exact zero): z = 0.25 + t / 8, 0.5 at x = 0.
+    const auto ru = certified_line_cylinder(Line<double>{{-2, y, 0.25}, {1, 0, 0.125}}, Cylinder<double>{{0, 0, 0}, {0, 0, 1}, 0.1});
+    BOOST_TEST(to_string(ru.answer) == (y > 0.1 ? "separated" : "overlapping"));
+    BOOST_TEST(to_string(ru.stage) == "double_double");
+    BOOST_TEST(ru.counter.exact == 0u);
+  }
 }
 
 // Along the axis: cap0 at t = 1, cap1 at t = 2.

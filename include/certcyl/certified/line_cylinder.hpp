@@ -17,12 +17,15 @@
 // Method (design note, sections 3 and 5): the division-free quadratic of the tube with its
 // cancellation-free discriminant, the slab of the caps, and a sign skeleton that decides
 // every comparison of symbolic bounds by the sign of p + q sqrt(disc)
-// (certified/detail/line_shape.hpp). Filtered in three stages: for a circular cylinder with
-// binary64 input, the semi-static double stage (certified/detail/line_static_filter.hpp:
-// division-free decision polynomials of degree <= 6 with proved forward error bounds); then
-// the skeleton in Interval_nt; then in Gmpq where an interval sign is undecided (ties,
-// tangencies, on-boundary cases, near misses). Rational input whose numbers are all binary64
-// values takes the double path. `FilterCounter` records the Gmpq fall-backs,
+// (certified/detail/line_shape.hpp). For a circular cylinder with binary64 input, each sign is
+// one division-free decision polynomial of degree <= 6 (certified/detail/line_static_filter.hpp),
+// evaluated adaptively: in double with a proved forward error bound; where that bound does not
+// decide, in double-double with its proved bound (certified/detail/line_double_double.hpp);
+// where that does not decide either (exact zeros: tangencies, on-boundary cases), exactly in
+// Mpzf. Other input (elliptic cylinders, magnitudes outside the stages' windows, rational
+// input that is not binary64) runs the skeleton in Interval_nt, then in Gmpq where an interval
+// sign is undecided. Rational input whose numbers are all binary64 values takes the double
+// path. `FilterCounter` records the Gmpq fall-backs,
 // `LineStageCounter` / `CertifiedLineResult::stage` the stage that decided.
 // Exact endpoints: the quadric in Mpzf from binary64 input (Gmpq otherwise), one Gmpq
 // normalisation per endpoint, the nearest double from an MPFR enclosure.
@@ -73,24 +76,37 @@ struct CertifiedEndpoint {
   std::string exact() const { return value.to_string(); }
 };
 
-// Which stage of the filter decided: the semi-static double stage (circular cylinder, binary64
-// input), Interval_nt, or exact Gmpq.
-enum class LineStage : unsigned char { semi_static, interval, exact };
+// Which stage of the filter decided (the deepest arithmetic any sign needed): the semi-static
+// double stage (circular cylinder, binary64 input), its double-double escalation,
+// Interval_nt, or exact arithmetic (Mpzf signs of the same polynomials, or the Gmpq skeleton).
+enum class LineStage : unsigned char { semi_static, interval, exact, double_double };
 
 inline constexpr std::string_view to_string(LineStage s) {
-  return s == LineStage::semi_static ? "semi_static" : (s == LineStage::interval ? "interval" : "exact");
+  switch (s) {
+    case LineStage::semi_static: return "semi_static";
+    case LineStage::double_double: return "double_double";
+    case LineStage::interval: return "interval";
+    case LineStage::exact: break;
+  }
+  return "exact";
 }
 
 // How many decisions each stage took.
 struct LineStageCounter {
-  std::uint64_t calls = 0, semi_static = 0, interval = 0, exact = 0;
+  std::uint64_t calls = 0, semi_static = 0, interval = 0, exact = 0, double_double = 0;
 
   void count(LineStage s) {
     ++calls;
-    ++(s == LineStage::semi_static ? semi_static : (s == LineStage::interval ? interval : exact));
+    switch (s) {
+      case LineStage::semi_static: ++semi_static; break;
+      case LineStage::double_double: ++double_double; break;
+      case LineStage::interval: ++interval; break;
+      case LineStage::exact: ++exact; break;
+    }
   }
   LineStageCounter& operator+=(const LineStageCounter& o) {
     calls += o.calls, semi_static += o.semi_static, interval += o.interval, exact += o.exact;
+    double_double += o.double_double;
     return *this;
   }
 };
@@ -176,20 +192,22 @@ std::optional<std::pair<LineInput<double>, Solid<double>>> as_binary64(const Lin
   return std::pair{din, dsolid};
 }
 
-// The filtered decision: semi-static double stage (circular cylinders), then Interval_nt, then
-// Gmpq. Input in double (exact binary64 values) or Rational.
+// The filtered decision: the adaptive polynomial signs (circular cylinders, binary64 input
+// inside the double stage's window: double, double-double, Mpzf per sign), else Interval_nt,
+// then Gmpq. Input in double (exact binary64 values) or Rational.
 template <class In, class Solid>
 LineShape certified_shape(const LineInput<In>& in, const Solid& solid, LineStage& stage) {
   if constexpr (std::is_same_v<In, Rational>) {
     if (const auto d = as_binary64(in, solid)) return certified_shape(d->first, d->second, stage);
   } else if constexpr (std::is_same_v<Solid, Cylinder<double>>) {
-    StaticCircularSigns s(in.origin, in.second, in.second_is_point, solid);
+    StaticCircularSigns s(in.origin, in.second, in.second_is_point, solid, /*escalate=*/true);
     if (s.usable()) {
       const LineShape shape = line_shape_from(s, in.range);
-      if (!s.undecided()) {
-        stage = LineStage::semi_static;
-        return shape;
-      }
+      // else: never undecided with escalation (every sign reaches Mpzf if it must)
+      using Depth = StaticCircularSigns::Depth;
+      stage = s.depth() == Depth::binary64 ? LineStage::semi_static
+                                            : (s.depth() == Depth::double_double ? LineStage::double_double : LineStage::exact);
+      return shape;
     }
   }
   FilterCounter counter;

@@ -4,8 +4,15 @@
 // Each sign the skeleton (certified/detail/line_shape.hpp) needs is the sign of a polynomial of
 // low degree in the input, evaluated in binary64 with a forward error bound computed from the
 // input magnitudes (Shewchuk; CGAL's Static_filters): the sign of the computed value v is
-// returned when |v| > bound, otherwise the stage gives up (`undecided()`) and the caller runs
-// the interval stage, then Gmpq. It never decides a sign wrongly, for any finite input.
+// returned when |v| > bound. Otherwise, adaptively and for that one sign only, the same
+// polynomial is evaluated again in double-double with its own proved bound
+// (certified/detail/line_double_double.hpp), and where that is still undecided (in practice an
+// exact zero: a tangency, an end on a cap plane, a line parallel to the axis) exactly in
+// CGAL::Mpzf from the same input doubles. So a near-tangent line costs one or two polynomials
+// in double-double, not the skeleton in intervals and Gmpq. Without escalation (the stage
+// alone, as the tests check it) the stage gives up (`undecided()`) on the first such sign and
+// the caller runs the interval stage, then Gmpq. No stage decides a sign wrongly, for any
+// finite input.
 //
 // The polynomials (P = p0, A = p1 - p0, w = O - P, w1 = O - p1; a segment S0 S1 has d = S1 - S0,
 // e0 = S1 - p0, e1 = S1 - p1). Circular quadric of line_shape.hpp: a t^2 + 2 b t + c <= 0,
@@ -56,12 +63,15 @@
 // never decided here: |v^| > B > 0 fails for v^ = 0, and those cases go to the next stage.
 #pragma once
 
+#include <CGAL/Mpzf.h>
 #include <CGAL/enum.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
+#include "certcyl/certified/detail/line_double_double.hpp"
 #include "certcyl/certified/detail/line_shape.hpp"
 #include "certcyl/primitives.hpp"
 
@@ -184,29 +194,75 @@ static_assert(cap_excess.C == 19 * 57 * 0x1p-52 && cap_excess.deg_len == 4 && ca
 static_assert(cap_side.C == 13 * 18 * 0x1p-52 && cap_side.deg_len == 2 && cap_side.deg_dir == 2);
 }  // namespace line_static_bounds
 
+// The same constants for the double-double stage (certified/detail/line_double_double.hpp):
+// every leaf exact (k 0), C = 2 (k + 1) N 2^-100.
+namespace line_dd_bounds {
+inline constexpr ErrorTerm len{1, 0, 1, 0};
+inline constexpr ErrorTerm dir{1, 0, 0, 1};
+inline constexpr ErrorTerm radius{1, 0, 1, 0};
+inline constexpr SV3<ErrorTerm> L{len, len, len}, Dv{dir, dir, dir};
+using P = CircularPolynomials<ErrorTerm>;
+
+constexpr StaticBound dd_bound(const ErrorTerm& t) {
+  if (t.k > 40 || t.deg_len + t.deg_dir > 6) throw "line_static_filter: outside the proved range";
+  return {2 * (t.k + 1) * t.N * 0x1p-100, t.deg_len, t.deg_dir};
+}
+inline constexpr StaticBound a = dd_bound(P::a(L, Dv));
+inline constexpr StaticBound disc = dd_bound(P::disc(L, L, Dv, radius));
+inline constexpr StaticBound excess = dd_bound(P::excess(L, L, radius));
+inline constexpr StaticBound dot_ld = dd_bound(P::dot(L, Dv));
+inline constexpr StaticBound dot_ll = dd_bound(P::dot(L, L));
+inline constexpr StaticBound b = dd_bound(P::b(L, L, Dv));
+inline constexpr StaticBound cap_excess = dd_bound(P::cap_excess(L, L, Dv, radius));
+inline constexpr StaticBound cap_side = dd_bound(P::cap_side(L, L, Dv));
+// By hand, as above with exact leaves: x.y: products k 1, sums k 3, N 3; |d x A|^2: cross
+// k 2, squares k 5, sums k 7, N 12; disc: e = A.(w x d) k 5 (cross 2, products 3, sums 5), e^2
+// k 11, N 36; (r r) a: k 1+7+1 = 9, N 12; difference k 12, N 48.
+static_assert(dot_ll.C == 2 * 4 * 3 * 0x1p-100 && a.C == 2 * 8 * 12 * 0x1p-100);
+static_assert(disc.C == 2 * 13 * 48 * 0x1p-100 && disc.deg_len == 4 && disc.deg_dir == 2);
+}  // namespace line_dd_bounds
+
 // ---- The stage -----------------------------------------------------------------------------
 
+// The leaves of the decision polynomials (header comment) in a number type T.
+template <class T>
+struct CircularLeaves {
+  SV3<T> A, w, w1, d, e0, e1;
+  T r;
+};
+
 // The skeleton's sign source for a line, ray or segment (binary64) against a circular cylinder
-// (binary64). Each polynomial sign is computed once, when first needed.
+// (binary64). Each polynomial sign is computed once, when first needed, in double with the
+// bound above. What the double evaluation leaves undecided is, with `escalate`, evaluated again
+// in double-double (certified/detail/line_double_double.hpp; inside its window and under
+// round-to-nearest) and, if still undecided (an exact zero: a tangency, an end on a cap plane),
+// exactly in CGAL::Mpzf from the same input doubles, so that every sign is decided. Without
+// `escalate` the source gives up (`undecided()`) on the first such sign.
 class StaticCircularSigns {
  public:
-  StaticCircularSigns(const Vec3<double>& origin, const Vec3<double>& second, bool second_is_point, const Cylinder<double>& cyl)
-      : r_(cyl.radius) {
-    A_ = diff(cyl.p1, cyl.p0);
-    w_ = diff(origin, cyl.p0);
-    w1_ = diff(origin, cyl.p1);
-    double ml = std::max({std::fabs(r_), vmax(A_), vmax(w_), vmax(w1_)});
+  // The deepest arithmetic a sign needed: double, double-double, exact (Mpzf).
+  enum class Depth : unsigned char { binary64, double_double, exact };
+
+  StaticCircularSigns(const Vec3<double>& origin, const Vec3<double>& second, bool second_is_point, const Cylinder<double>& cyl,
+                      bool escalate = false)
+      : origin_(origin), second_(second), p0_(cyl.p0), p1_(cyl.p1), second_is_point_(second_is_point), escalate_(escalate) {
+    CircularLeaves<double>& l = leaves_;
+    l.r = cyl.radius;
+    l.A = diff(cyl.p1, cyl.p0);
+    l.w = diff(origin, cyl.p0);
+    l.w1 = diff(origin, cyl.p1);
+    double ml = std::max({std::fabs(l.r), vmax(l.A), vmax(l.w), vmax(l.w1)});
     if (second_is_point) {
-      d_ = diff(second, origin);
-      e0_ = diff(second, cyl.p0);
-      e1_ = diff(second, cyl.p1);
-      ml = std::max({ml, vmax(e0_), vmax(e1_)});
+      l.d = diff(second, origin);
+      l.e0 = diff(second, cyl.p0);
+      l.e1 = diff(second, cyl.p1);
+      ml = std::max({ml, vmax(l.e0), vmax(l.e1)});
     } else {
-      d_ = {second.x, second.y, second.z};
+      l.d = {second.x, second.y, second.z};
       // A ray or line has no t = 1 bound; e0 and e1 are never read.
-      e0_ = e1_ = {0, 0, 0};
+      l.e0 = l.e1 = {0, 0, 0};
     }
-    const double md = vmax(d_);
+    const double md = vmax(l.d);
     // The window of the proof (header comment); NaN (an overflowed difference) fails it too.
     usable_ = ml >= 0x1p-150 && ml <= 0x1p150 && md >= 0x1p-150 && md <= 0x1p150;
     len_pow_[0] = dir_pow_[0] = 1;
@@ -216,20 +272,19 @@ class StaticCircularSigns {
 
   bool usable() const { return usable_; }
   bool undecided() const { return undecided_; }
+  Depth depth() const { return depth_; }
 
   // B = fl(fl(C mlen^i) mdir^j) of the header comment, for this input's magnitudes.
   double bound(const StaticBound& b) const { return b.C * len_pow_[b.deg_len] * dir_pow_[b.deg_dir]; }
 
   // Step 1 and 2 signs of line_shape.
-  CGAL::Sign sign_a() { return cached(kA, [&] { return decide(P::a(A_, d_), line_static_bounds::a); }); }
-  CGAL::Sign sign_disc() { return cached(kDisc, [&] { return decide(P::disc(A_, w_, d_, r_), line_static_bounds::disc); }); }
-  CGAL::Sign sign_c() { return cached(kC, [&] { return decide(P::excess(A_, w_, r_), line_static_bounds::excess); }); }
-  CGAL::Sign sign_sd() { return cached(kSd, [&] { return decide(P::dot(d_, A_), line_static_bounds::dot_ld); }); }
-  CGAL::Sign sign_sw() { return cached(kSw, [&] { return decide(P::dot(w_, A_), line_static_bounds::dot_ll); }); }
+  CGAL::Sign sign_a() { return sign(kA); }
+  CGAL::Sign sign_disc() { return sign(kDisc); }
+  CGAL::Sign sign_c() { return sign(kC); }
+  CGAL::Sign sign_sd() { return sign(kSd); }
+  CGAL::Sign sign_sw() { return sign(kSw); }
   // H - sw = A.A - w.A = -(w1.A)
-  CGAL::Sign sign_H_minus_sw() {
-    return CGAL::opposite(cached(kSw1, [&] { return decide(P::dot(w1_, A_), line_static_bounds::dot_ll); }));
-  }
+  CGAL::Sign sign_H_minus_sw() { return CGAL::opposite(sign(kSw1)); }
 
   // Bounds are compared by this object itself once the tube and slab states are known.
   StaticCircularSigns& bounds(TubeState tube, SlabState) {
@@ -251,28 +306,125 @@ class StaticCircularSigns {
   }
 
  private:
-  using P = CircularPolynomials<double>;
   enum Slot { kA, kDisc, kC, kSd, kSw, kSw1, kB, kF1, kB1, kCapEx0, kCapEx1, kCapSide0, kCapSide1, kE0A, kE1A, kSlots };
+
+  // The polynomial of each slot, in any number type.
+  template <class T>
+  static T slot_value(Slot s, const CircularLeaves<T>& l) {
+    using Q = CircularPolynomials<T>;
+    switch (s) {
+      case kA: return Q::a(l.A, l.d);
+      case kDisc: return Q::disc(l.A, l.w, l.d, l.r);
+      case kC: return Q::excess(l.A, l.w, l.r);
+      case kSd: return Q::dot(l.d, l.A);
+      case kSw: return Q::dot(l.w, l.A);
+      case kSw1: return Q::dot(l.w1, l.A);
+      case kB: return Q::b(l.A, l.w, l.d);
+      case kF1: return Q::excess(l.A, l.e0, l.r);
+      case kB1: return Q::b(l.A, l.e0, l.d);
+      case kCapEx0: return Q::cap_excess(l.A, l.w, l.d, l.r);
+      case kCapEx1: return Q::cap_excess(l.A, l.w1, l.d, l.r);
+      case kCapSide0: return Q::cap_side(l.A, l.w, l.d);
+      case kCapSide1: return Q::cap_side(l.A, l.w1, l.d);
+      case kE0A: return Q::dot(l.e0, l.A);
+      case kE1A: return Q::dot(l.e1, l.A);
+      case kSlots: break;
+    }
+    return l.r;  // not reached
+  }
+
+  // The bound of each slot in double and in double-double.
+  static const StaticBound& double_bound(Slot s) {
+    namespace b = line_static_bounds;
+    static constexpr StaticBound table[kSlots] = {b::a,          b::disc,       b::excess,   b::dot_ld,   b::dot_ll,
+                                                  b::dot_ll,     b::b,          b::excess,   b::b,        b::cap_excess,
+                                                  b::cap_excess, b::cap_side,   b::cap_side, b::dot_ll,   b::dot_ll};
+    return table[s];
+  }
+  static const StaticBound& dd_bound(Slot s) {
+    namespace b = line_dd_bounds;
+    static constexpr StaticBound table[kSlots] = {b::a,          b::disc,       b::excess,   b::dot_ld,   b::dot_ll,
+                                                  b::dot_ll,     b::b,          b::excess,   b::b,        b::cap_excess,
+                                                  b::cap_excess, b::cap_side,   b::cap_side, b::dot_ll,   b::dot_ll};
+    return table[s];
+  }
 
   static SV3<double> diff(const Vec3<double>& p, const Vec3<double>& q) { return {p.x - q.x, p.y - q.y, p.z - q.z}; }
   static double vmax(const SV3<double>& v) { return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}); }
   static bool is_tube(BoundKind k) { return k == BoundKind::tube_lo || k == BoundKind::tube_hi; }
 
-  CGAL::Sign decide(double v, const StaticBound& b) {
-    const double bound = this->bound(b);
-    if (v > bound) return CGAL::POSITIVE;
-    if (v < -bound) return CGAL::NEGATIVE;
-    undecided_ = true;  // else: |v| within the error bound; the result below is never used
-    return CGAL::ZERO;
-  }
-
-  template <class F>
-  CGAL::Sign cached(Slot s, F&& f) {
+  CGAL::Sign sign(Slot s) {
     if (!known_[s]) {
-      sign_[s] = static_cast<std::int8_t>(f());
+      const double v = slot_value(s, leaves_);
+      const double bound = this->bound(double_bound(s));
+      CGAL::Sign r;
+      if (v > bound)
+        r = CGAL::POSITIVE;
+      else if (v < -bound)
+        r = CGAL::NEGATIVE;
+      else
+        r = escalated_sign(s);  // |v| within the error bound
+      sign_[s] = static_cast<std::int8_t>(r);
       known_[s] = true;
     }
     return static_cast<CGAL::Sign>(sign_[s]);
+  }
+
+  // The sign of slot s in double-double, else exactly; or give up (no `escalate`).
+  [[gnu::noinline]] CGAL::Sign escalated_sign(Slot s) {
+    if (!escalate_) {
+      undecided_ = true;  // the result is never used
+      return CGAL::ZERO;
+    }
+    if (!dd_) make_dd_leaves();
+    if (dd_usable_) {
+      const DD v = slot_value(s, *dd_);
+      const StaticBound& b = dd_bound(s);
+      const double bound = b.C * dd_len_pow_[b.deg_len] * dd_dir_pow_[b.deg_dir];
+      depth_ = std::max(depth_, Depth::double_double);
+      if (v.hi() > bound) return CGAL::POSITIVE;
+      if (v.hi() < -bound) return CGAL::NEGATIVE;
+    }
+    if (!exact_) exact_ = make_leaves<CGAL::Mpzf>([](double x, double y) { return CGAL::Mpzf(x) - CGAL::Mpzf(y); });
+    depth_ = Depth::exact;
+    return slot_value(s, *exact_).sign();
+  }
+
+  // The leaves in T, each difference formed by sub(x, y) (exact for DD and Mpzf).
+  template <class T, class Sub>
+  CircularLeaves<T> make_leaves(Sub sub) const {
+    auto vsub = [&](const Vec3<double>& p, const Vec3<double>& q) { return SV3<T>{sub(p.x, q.x), sub(p.y, q.y), sub(p.z, q.z)}; };
+    CircularLeaves<T> l;
+    l.r = T(leaves_.r);
+    l.A = vsub(p1_, p0_);
+    l.w = vsub(origin_, p0_);
+    l.w1 = vsub(origin_, p1_);
+    if (second_is_point_) {
+      l.d = vsub(second_, origin_);
+      l.e0 = vsub(second_, p0_);
+      l.e1 = vsub(second_, p1_);
+    } else {
+      l.d = {T(second_.x), T(second_.y), T(second_.z)};
+      l.e0 = l.e1 = {T(0.0), T(0.0), T(0.0)};
+    }
+    return l;
+  }
+
+  void make_dd_leaves() {
+    dd_ = make_leaves<DD>(dd_difference);
+    auto in = [](const Vec3<double>& p) {
+      return in_double_double_window(p.x) && in_double_double_window(p.y) && in_double_double_window(p.z);
+    };
+    dd_usable_ = in_double_double_window(leaves_.r) && in(origin_) && in(second_) && in(p0_) && in(p1_) && rounding_to_nearest();
+    // The bound's magnitudes: the largest high parts, at least 2^-120 (a larger m only raises
+    // the bound; this keeps its computation clear of underflow).
+    auto hmax = [](const SV3<DD>& v) { return std::max({std::fabs(v.x.hi()), std::fabs(v.y.hi()), std::fabs(v.z.hi())}); };
+    const CircularLeaves<DD>& l = *dd_;
+    const double ml = std::max({0x1p-120, std::fabs(leaves_.r), hmax(l.A), hmax(l.w), hmax(l.w1), hmax(l.e0), hmax(l.e1)});
+    const double md = std::max(0x1p-120, hmax(l.d));
+    dd_len_pow_[0] = dd_dir_pow_[0] = 1;
+    for (int i = 1; i < 5; ++i) dd_len_pow_[i] = dd_len_pow_[i - 1] * ml;
+    for (int i = 1; i < 3; ++i) dd_dir_pow_[i] = dd_dir_pow_[i - 1] * md;
   }
 
   // Sign of tube root T - rho for rho a cap or range bound (header comment: F and G).
@@ -281,21 +433,19 @@ class StaticCircularSigns {
     switch (rho) {
       case BoundKind::range_lo:
         F = sign_c();
-        G = F == CGAL::NEGATIVE ? CGAL::ZERO : cached(kB, [&] { return decide(P::b(A_, w_, d_), line_static_bounds::b); });
+        G = F == CGAL::NEGATIVE ? CGAL::ZERO : sign(kB);
         break;
       case BoundKind::range_hi:
-        F = cached(kF1, [&] { return decide(P::excess(A_, e0_, r_), line_static_bounds::excess); });
-        G = F == CGAL::NEGATIVE ? CGAL::ZERO : cached(kB1, [&] { return decide(P::b(A_, e0_, d_), line_static_bounds::b); });
+        F = sign(kF1);
+        G = F == CGAL::NEGATIVE ? CGAL::ZERO : sign(kB1);
         break;
       case BoundKind::cap0:
-        F = cached(kCapEx0, [&] { return decide(P::cap_excess(A_, w_, d_, r_), line_static_bounds::cap_excess); });
-        G = F == CGAL::NEGATIVE ? CGAL::ZERO
-                                : CGAL::opposite(sign_sd() * cached(kCapSide0, [&] { return decide(P::cap_side(A_, w_, d_), line_static_bounds::cap_side); }));
+        F = sign(kCapEx0);
+        G = F == CGAL::NEGATIVE ? CGAL::ZERO : CGAL::opposite(sign_sd() * sign(kCapSide0));
         break;
       case BoundKind::cap1:
-        F = cached(kCapEx1, [&] { return decide(P::cap_excess(A_, w1_, d_, r_), line_static_bounds::cap_excess); });
-        G = F == CGAL::NEGATIVE ? CGAL::ZERO
-                                : CGAL::opposite(sign_sd() * cached(kCapSide1, [&] { return decide(P::cap_side(A_, w1_, d_), line_static_bounds::cap_side); }));
+        F = sign(kCapEx1);
+        G = F == CGAL::NEGATIVE ? CGAL::ZERO : CGAL::opposite(sign_sd() * sign(kCapSide1));
         break;
       default: return CGAL::ZERO;  // tube against tube is handled by compare
     }
@@ -320,18 +470,24 @@ class StaticCircularSigns {
     if (y == BoundKind::range_lo)
       num = x == BoundKind::cap0 ? sign_sw() : CGAL::opposite(sign_H_minus_sw());
     else
-      num = x == BoundKind::cap0 ? cached(kE0A, [&] { return decide(P::dot(e0_, A_), line_static_bounds::dot_ll); })
-                                 : cached(kE1A, [&] { return decide(P::dot(e1_, A_), line_static_bounds::dot_ll); });
+      num = sign(x == BoundKind::cap0 ? kE0A : kE1A);
     return CGAL::opposite(num * sign_sd());
   }
 
-  SV3<double> A_, w_, w1_, d_, e0_, e1_;
-  double r_;
+  CircularLeaves<double> leaves_;
+  Vec3<double> origin_, second_, p0_, p1_;
+  bool second_is_point_, escalate_;
   double len_pow_[5], dir_pow_[3];
   bool usable_ = false, undecided_ = false;
   TubeState tube_ = TubeState::empty;
   bool known_[kSlots] = {};
   std::int8_t sign_[kSlots] = {};
+  Depth depth_ = Depth::binary64;
+  // The later stages' leaves, made when first needed.
+  std::optional<CircularLeaves<DD>> dd_;
+  bool dd_usable_ = false;
+  double dd_len_pow_[5], dd_dir_pow_[3];
+  std::optional<CircularLeaves<CGAL::Mpzf>> exact_;
 };
 
 }  // namespace certcyl::detail
