@@ -224,3 +224,38 @@ BOOST_AUTO_TEST_CASE(ring_touching_proof_agrees_with_gmpq) {
   }
   BOOST_TEST(proved > 0);
 }
+
+// simplest_convergent (integer continued fractions) against the same definition in Gmpq: the
+// first convergent within the tolerance, on fractions near small-height ones and on random ones.
+namespace {
+Q convergent_reference(const Q& x, const Q& tolerance) {
+  CGAL::Gmpz h_prev(1), h_prev2(0), k_prev(0), k_prev2(1);
+  Q y = x;
+  for (int i = 0; i < 400; ++i) {
+    CGAL::Gmpz a;
+    mpz_fdiv_q(a.mpz(), mpq_numref(y.mpq()), mpq_denref(y.mpq()));
+    const CGAL::Gmpz h = a * h_prev + h_prev2, k = a * k_prev + k_prev2;
+    const Q approx(h, k);
+    const Q error = x - approx;
+    if ((error < 0 ? Q(-error) : error) <= tolerance) return approx;
+    const Q frac = y - Q(a);
+    if (frac == 0) return approx;
+    y = 1 / frac;
+    h_prev2 = h_prev, h_prev = h, k_prev2 = k_prev, k_prev = k;
+  }
+  return x;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(reconstruction_agrees_with_gmpq) {
+  std::mt19937_64 g(11);
+  std::uniform_int_distribution<long> num(-1000000, 1000000), den(1, 1000000);
+  const Q tiny = Q(1) / Q(CGAL::Gmpz(1) << 100);
+  for (int i = 0; i < 2000; ++i) {
+    const Q base(num(g), den(g));
+    const Q x = i % 3 == 0 ? base : base + Q(num(g) % 7) * tiny;
+    for (const Q& tol : {Q(0), Q(1) / Q(CGAL::Gmpz(1) << 20), Q(1) / Q(CGAL::Gmpz(1) << 50), Q(1, 3)}) {
+      BOOST_TEST_CONTEXT(x << " tolerance " << tol) { BOOST_TEST((certcyl::detail::simplest_convergent(x, tol) == convergent_reference(x, tol))); }
+    }
+  }
+}

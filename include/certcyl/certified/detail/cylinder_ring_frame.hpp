@@ -61,11 +61,12 @@ struct RingFrame {
   CylinderPair<CGAL::Mpzf> pair;
   CGAL::Gmpz L = 1;
   int e = 0;
+  CGAL::Mpzf L_mpzf = CGAL::Mpzf(1);  // L
 
   // Binary64 world input (already s = 2^e times the input, e the world frame's exponent).
   static RingFrame from_world(const Cylinder<double>& w0, const Cylinder<double>& w1, int world_exponent) {
     const auto to_m = [](double x) { return CGAL::Mpzf(x); };
-    return {CylinderPair<CGAL::Mpzf>::make(w0.map(to_m), w1.map(to_m)), CGAL::Gmpz(1), world_exponent};
+    return {CylinderPair<CGAL::Mpzf>::make(w0.map(to_m), w1.map(to_m)), CGAL::Gmpz(1), world_exponent, CGAL::Mpzf(1)};
   }
 
   // Rational input: L the lcm of the denominators; nullopt when L is too large.
@@ -76,20 +77,22 @@ struct RingFrame {
         mpz_lcm(L.mpz(), L.mpz(), mpq_denref(q->mpq()));
         if (mpz_sizeinbase(L.mpz(), 2) > kRingFrameMaxBits) return std::nullopt;
       }
-    const auto to_m = [&L](const Rational& q) {
+    CGAL::Gmpz n;  // one buffer for every coordinate
+    const auto to_m = [&L, &n](const Rational& q) {
       // q L = numerator (L / denominator), an integer.
-      CGAL::Gmpz n;
       mpz_divexact(n.mpz(), L.mpz(), mpq_denref(q.mpq()));
       mpz_mul(n.mpz(), n.mpz(), mpq_numref(q.mpq()));
       return mpzf_from_integer(n);
     };
-    return RingFrame{CylinderPair<CGAL::Mpzf>::make(c0.map(to_m), c1.map(to_m)), L, 0};
+    RingFrame f{CylinderPair<CGAL::Mpzf>::make(c0.map(to_m), c1.map(to_m)), L, 0};
+    f.L_mpzf = mpzf_from_integer(L);
+    return f;
   }
 
   // A point of the world frame (input times 2^world_exponent), in the ring frame.
   CGAL::Mpzf from_world(const CGAL::Mpzf& x, int world_exponent) const {
     CGAL::Mpzf y = mpzf_times_two_power(x, static_cast<long>(e) - world_exponent);
-    if (L != 1) y = y * mpzf_from_integer(L);
+    if (L != 1) y = y * L_mpzf;
     return y;
   }
 

@@ -251,24 +251,33 @@ inline std::optional<RingContact> prove_touching_ring(const CylinderPair<CGAL::M
   return RingContact{f0.feature, f1.feature, D, X};
 }
 
-// Continued-fraction reconstruction: the first convergent p/q of x with |x - p/q| <= tolerance.
+// Continued-fraction reconstruction: the first convergent p/q of x with |x - p/q| <= tolerance
+// (tolerance >= 0). In integers: with x = n0 / d0 and the remainders (n, d) of Euclid's
+// algorithm, each partial quotient a = floor(n / d) extends the convergents h / k, and the test
+// is |n0 k - h d0| tol_den <= tol_num d0 k (k > 0), without a gcd.
 inline Rational simplest_convergent(const Rational& x, const Rational& tolerance) {
-  CGAL::Gmpz h_prev(1), h_prev2(0), k_prev(0), k_prev2(1);
-  Rational y = x;
+  mpz_srcptr n0 = mpq_numref(x.mpq()), d0 = mpq_denref(x.mpq());
+  mpz_srcptr tn = mpq_numref(tolerance.mpq()), td = mpq_denref(tolerance.mpq());
+  CGAL::Gmpz n(n0), d(d0), a, r, h, k, h_prev(1), h_prev2(0), k_prev(0), k_prev2(1), lhs, rhs;
   for (int i = 0; i < 400; ++i) {
-    CGAL::Gmpz a;
-    mpz_fdiv_q(a.mpz(), mpq_numref(y.mpq()), mpq_denref(y.mpq()));
-    const CGAL::Gmpz h = a * h_prev + h_prev2, k = a * k_prev + k_prev2;
-    const Rational approx(h, k);
-    const Rational error = x - approx;
-    if ((error < 0 ? Rational(-error) : error) <= tolerance) return approx;
-    const Rational frac = y - Rational(a);
-    if (frac == 0) return approx;
-    y = 1 / frac;
-    h_prev2 = h_prev;
-    h_prev = h;
-    k_prev2 = k_prev;
-    k_prev = k;
+    mpz_fdiv_qr(a.mpz(), r.mpz(), n.mpz(), d.mpz());
+    mpz_mul(h.mpz(), a.mpz(), h_prev.mpz());
+    mpz_add(h.mpz(), h.mpz(), h_prev2.mpz());
+    mpz_mul(k.mpz(), a.mpz(), k_prev.mpz());
+    mpz_add(k.mpz(), k.mpz(), k_prev2.mpz());
+    mpz_mul(lhs.mpz(), n0, k.mpz());
+    mpz_submul(lhs.mpz(), h.mpz(), d0);
+    mpz_abs(lhs.mpz(), lhs.mpz());
+    mpz_mul(lhs.mpz(), lhs.mpz(), td);
+    mpz_mul(rhs.mpz(), tn, d0);
+    mpz_mul(rhs.mpz(), rhs.mpz(), k.mpz());
+    if (mpz_cmp(lhs.mpz(), rhs.mpz()) <= 0 || mpz_sgn(r.mpz()) == 0) return Rational(h, k);
+    mpz_swap(n.mpz(), d.mpz());  // y = 1 / (y - a) = d / r
+    mpz_swap(d.mpz(), r.mpz());
+    mpz_swap(h_prev2.mpz(), h_prev.mpz());
+    mpz_swap(h_prev.mpz(), h.mpz());
+    mpz_swap(k_prev2.mpz(), k_prev.mpz());
+    mpz_swap(k_prev.mpz(), k.mpz());
   }
   return x;
 }
