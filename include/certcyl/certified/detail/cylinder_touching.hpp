@@ -23,6 +23,10 @@
 // With rational data every touching pair has a rational normal (the theorem of
 // detail/cylinder_rim_contacts.hpp), so proving from rational candidates loses nothing; the
 // rim-wall and rim-rim candidates are computed exactly there (rim_contact_normals).
+//
+// Two forms of the proof: prove_touching in Gmpq on the input, and prove_touching_ring in Mpzf
+// on the ring frame of detail/cylinder_ring_frame.hpp (the same facts, the same contact point,
+// without division or gcds; the solver uses it whenever the ring frame exists).
 #pragma once
 
 #include <CGAL/Gmpq.h>
