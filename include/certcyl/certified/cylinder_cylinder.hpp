@@ -48,13 +48,18 @@
 //                    active caps, walls and rims read off the gauges
 //                    (detail/cylinder_active_set.hpp); where it stalls, the optimiser's
 //                    smoothing path in double-double. A point and a direction accurate to about
-//                    2^-100, checked exactly (Mpzf for binary64 input, Gmpq otherwise); it
+//                    2^-100, checked exactly in Mpzf, in the ring frame of
+//                    detail/cylinder_ring_frame.hpp (the input times a power of two for binary64
+//                    input, times the lcm of its denominators for other rational input; Gmpq
+//                    when that lcm is too large); it
 //                    decides pairs 2^-50 .. 2^-95 from touching, and its direction leads the
 //                    touching candidates.
 //   touching_exact   rational candidate normals (A0, A1, A0 x A1, the parts of Delta orthogonal to
 //                    the axes, the exact rim-wall and rim-rim normals of
 //                    detail/cylinder_rim_contacts.hpp, a small-height rational reconstruction of
-//                    the optimiser's direction), each proved or rejected exactly.
+//                    the optimiser's direction), each proved or rejected exactly: an interval
+//                    pre-filter, then prove_touching_ring in Mpzf in the ring frame (Gmpq's
+//                    prove_touching when there is no ring frame).
 //   gmpfr            exact candidates first (the midpoints and points of an end disc of one
 //                    cylinder whose end lies in the other as witnesses, T and its parts
 //                    orthogonal to the axes as directions, all in Gmpq), then the optimiser at
@@ -102,6 +107,7 @@
 #include "certcyl/certified/detail/cylinder_ellipsoid.hpp"
 #include "certcyl/certified/detail/cylinder_optimiser.hpp"
 #include "certcyl/certified/detail/cylinder_quick_filter.hpp"
+#include "certcyl/certified/detail/cylinder_ring_frame.hpp"
 #include "certcyl/certified/detail/cylinder_static_filter.hpp"
 #include "certcyl/certified/detail/cylinder_touching.hpp"
 #include "certcyl/errors.hpp"
@@ -940,12 +946,17 @@ class CylinderCylinderSolver {
   };
 
   // The world input in QD: exact for binary64 input, correctly rounded otherwise.
+  // Rational input is rounded once per query (the refine stage may ask twice).
   template <class QD>
   CylinderPair<QD> world_pair() {
     const auto to_q = [](double x) { return QD(x); };
+    if (binary64_) return CylinderPair<QD>::make(dbl_.c0.map(to_q), dbl_.c1.map(to_q));
     const auto rational_to_q = [this](const Rational& q) { return qd_from_rational<QD>(q, world_exponent_); };
-    return binary64_ ? CylinderPair<QD>::make(dbl_.c0.map(to_q), dbl_.c1.map(to_q))
-                     : CylinderPair<QD>::make(exact_cylinder(0).map(rational_to_q), exact_cylinder(1).map(rational_to_q));
+    if constexpr (std::is_same_v<QD, dd_real>) {
+      if (!dd_pair_) dd_pair_ = CylinderPair<QD>::make(exact_cylinder(0).map(rational_to_q), exact_cylinder(1).map(rational_to_q));
+      return *dd_pair_;
+    }
+    return CylinderPair<QD>::make(exact_cylinder(0).map(rational_to_q), exact_cylinder(1).map(rational_to_q));
   }
   template <class QD>
   static bool finite_q(const QD& x) {
@@ -983,10 +994,10 @@ class CylinderCylinderSolver {
         const auto [lo, hi] = nt::to_interval(x);
         return Interval(lo, hi);
       }));
-      r.decided = world_exact_ ? dyadic_overlaps(o->point) : exact_overlaps(world_to_input(o->point));
+      r.decided = ring() ? dyadic_overlaps(o->point) : exact_overlaps(world_to_input(o->point));
     } else if (refined_) {
       bound_by_direction(to_iv(*refined_));
-      r.decided = world_exact_ ? dyadic_separates(o->direction) : exact_separates(*refined_);
+      r.decided = ring() ? dyadic_separates(o->direction) : exact_separates(*refined_);
     }
     return r;
   }
@@ -1004,11 +1015,11 @@ class CylinderCylinderSolver {
       Vec3<Rational> D = m.direction.map([](const QD& x) { return nt::to_rational(x); });
       if (!(D.x == 0 && D.y == 0 && D.z == 0)) {
         refined_ = std::move(D);
-        if (world_exact_ ? dyadic_separates(m.direction) : exact_separates(*refined_)) return true;
+        if (ring() ? dyadic_separates(m.direction) : exact_separates(*refined_)) return true;
       }
     }
     if (finite_q(m.point))
-      return world_exact_ ? dyadic_overlaps(m.point) : exact_overlaps(world_to_input(m.point));
+      return ring() ? dyadic_overlaps(m.point) : exact_overlaps(world_to_input(m.point));
     return false;
   }
 
@@ -1036,15 +1047,23 @@ class CylinderCylinderSolver {
     return optimiser_exact() || pass();
   }
 
-  // Binary64 input in an exact world frame: a double-double candidate has dyadic coordinates,
-  // and is checked exactly in Mpzf against the world input (the signs are those of the input
-  // frame: the checks are homogeneous in the coordinates), without Gmpq's gcds.
-  const CylinderPair<CGAL::Mpzf>& world_mpzf() {
-    if (!mpzf_) {
-      const auto to_m = [](double x) { return CGAL::Mpzf(x); };
-      mpzf_ = CylinderPair<CGAL::Mpzf>::make(dbl_.c0.map(to_m), dbl_.c1.map(to_m));
+  // The ring frame (detail/cylinder_ring_frame.hpp): the input times L 2^e in Mpzf, built when
+  // first needed. Binary64 input in an exact world frame: the world input itself (L = 1); other
+  // rational input: times the lcm L of its denominators. A double-double candidate has dyadic
+  // coordinates, so it is checked exactly there (the signs are those of the input frame: the
+  // checks are homogeneous in the lengths and in the direction), without Gmpq's gcds. nullptr
+  // when there is no such frame (binary64 input whose world frame is not exact, rational input
+  // whose L is too large): the checks are then made in Gmpq.
+  const RingFrame* ring() {
+    if (!ring_tried_) {
+      ring_tried_ = true;
+      if (binary64_) {
+        if (world_exact_) ring_ = RingFrame::from_world(dbl_.c0, dbl_.c1, world_exponent_);
+      } else {
+        ring_ = RingFrame::from_rational(*input_[0], *input_[1]);
+      }
     }
-    return *mpzf_;
+    return ring_ ? &*ring_ : nullptr;
   }
   template <class QD>
   static CGAL::Mpzf to_mpzf(const QD& x) {
@@ -1062,14 +1081,17 @@ class CylinderCylinderSolver {
     ++result_.counters.points_checked;
     ++result_.counters.exact_checks;
     last_check_ = CylinderArithmetic::exact;
-    return strictly_inside_both(world_mpzf(), X.map([](const QD& x) { return to_mpzf(x); })) && overlapping_at(world_to_input(X));
+    const RingFrame& f = *ring();
+    const int e = world_exponent_;
+    return strictly_inside_both(f.pair, X.map([&f, e](const QD& x) { return f.from_world(to_mpzf(x), e); })) &&
+           overlapping_at(world_to_input(X));
   }
   template <class QD>
   bool dyadic_separates(const Vec3<QD>& D) {
     ++result_.counters.directions_checked;
     ++result_.counters.exact_checks;
     last_check_ = CylinderArithmetic::exact;
-    return separation_sign(world_mpzf(), D.map([](const QD& x) { return to_mpzf(x); })) == CGAL::POSITIVE && separated_by(*refined_);
+    return separation_sign(ring()->pair, D.map([](const QD& x) { return to_mpzf(x); })) == CGAL::POSITIVE && separated_by(*refined_);
   }
 
   // ---- stage touching_exact -----------------------------------------------------------------------------
@@ -1102,8 +1124,69 @@ class CylinderCylinderSolver {
     return dot(c, c) <= std::ldexp(dot(a, a) * dot(b, b), -80);
   }
 
+  // The same candidates, proved in the ring frame (prove_touching_ring, detail/cylinder_touching.hpp):
+  // the interval pre-filter of try_touching, then the proof in Mpzf; the contact's normal and
+  // point are converted to the input frame once, when proved.
+  bool try_touching_ring(const Vec3<CGAL::Mpzf>& D) {
+    {
+      const CylinderPair<Interval>& d = iv();
+      CGAL::Protect_FPU_rounding<true> upward;
+      Vec3<Interval> Di;
+      bool finite_enclosure = true;
+      for (std::size_t i = 0; i < 3; ++i) {
+        const std::pair<double, double> b = CGAL::to_interval(D[i]);
+        finite_enclosure = finite_enclosure && std::isfinite(b.first) && std::isfinite(b.second);
+        Di[i] = Interval(b.first, b.second);
+      }
+      if (finite_enclosure) {
+        const std::optional<Interval> r = ratio_enclosure(d, Di);
+        if (r && (r->inf() > 1 || r->sup() < 1)) return false;
+      }
+    }
+    ++result_.counters.touching_candidates;
+    const RingFrame& f = *ring();
+    std::optional<RingContact> c = prove_touching_ring(f.pair, D);
+    if (!c) return false;
+    const CGAL::Mpzf& w = c->point.w;
+    return touching_with(CylinderContact{c->feature0, c->feature1, mpzf_to_rational(c->normal),
+                                         c->point.n.map([&f, &w](const CGAL::Mpzf& x) { return f.to_input(x, w); })});
+  }
+
+  static bool nearly_parallel(const Vec3<double>& a, const Vec3<double>& b) {
+    const Vec3<double> c = cross(a, b);
+    return dot(c, c) <= std::ldexp(dot(a, a) * dot(b, b), -80);
+  }
+
+  // touching_exact in the ring frame: the same candidates in the same order.
+  bool touching_exact_ring() {
+    const CylinderPair<CGAL::Mpzf>& d = ring()->pair;
+    const std::array<Vec3<CGAL::Mpzf>, 5> structural = {d.A0, d.A1, cross(d.A0, d.A1), d.AA0 * d.T - dot(d.A0, d.T) * d.A0,
+                                                        d.AA1 * d.T - dot(d.A1, d.T) * d.A1};
+    std::array<bool, 5> tried{};
+    if (refined_) {
+      const Vec3<double> R = refined_->map([](const Rational& x) { return CGAL::to_double(x); });
+      for (std::size_t i = 0; i < structural.size(); ++i)
+        if (nearly_parallel(structural[i].map([](const CGAL::Mpzf& x) { return CGAL::to_double(x); }), R)) {
+          tried[i] = true;
+          if (try_touching_ring(structural[i])) return true;
+        }
+      if (try_touching_ring(ring_direction(reconstruct_direction(*refined_, Rational(1L, 1UL << 50))))) return true;
+    }
+    for (std::size_t i = 0; i < structural.size(); ++i)
+      if (!tried[i] && try_touching_ring(structural[i])) return true;
+    for (const Vec3<Rational>& D : rim_contact_normals(exact()))
+      if (try_touching_ring(ring_direction(D))) return true;
+    if (optimum_ && finite(*optimum_)) {
+      const Vec3<Rational> D = optimum_->map([](double x) { return Rational(x); });
+      if (!(D.x == 0 && D.y == 0 && D.z == 0) && try_touching_ring(ring_direction(reconstruct_direction(D, Rational(1, 1 << 20)))))
+        return true;
+    }
+    return false;
+  }
+
   bool touching_exact() {
     begin(CylinderStage::touching_exact);
+    if (ring()) return touching_exact_ring() || pass();
     const CylinderPair<Rational>& e = exact();
     const std::array<Vec3<Rational>, 5> structural = structural_directions(e);
     // The refine stage's direction is within about 2^-100 of the contact normal when there is
@@ -1444,6 +1527,9 @@ class CylinderCylinderSolver {
   std::optional<DirectionProblem> direction_problem_;
   std::optional<std::array<Rational, 3>> point_start_;
   std::optional<std::array<Rational, 2>> direction_start_;
+  std::optional<RingFrame> ring_;  // ring()
+  bool ring_tried_ = false;
+  std::optional<CylinderPair<dd_real>> dd_pair_;  // world_pair<dd_real>() of rational input
   std::optional<Vec3<double>> optimum_;
   std::optional<Point3<double>> optimum_point_;
   double optimum_value_ = std::numeric_limits<double>::infinity();

@@ -1,0 +1,137 @@
+// certcyl/certified/detail/cylinder_ring_frame.hpp -- the exact input of a cylinder pair as
+// dyadic numbers (CGAL::Mpzf), for exact checks without Gmpq's gcds and allocations.
+//
+// Semantics: the ring frame is the input multiplied by a positive rational s,
+//   s = L 2^e,  L a positive integer, e an integer,
+// chosen so that every coordinate and radius is a dyadic number (an integer times a power of
+// two), exactly representable as Mpzf:
+//   binary64 input     L = 1, e = the world frame's exponent (the input is dyadic already);
+//   other rational     L = the least common multiple of the 14 denominators, e = 0 (the
+//                      input becomes integers).
+// Every check of detail/cylinder_certificates.hpp is a sign of a polynomial that is homogeneous
+// in the lengths (the coordinates and radii together) and in the direction, so its sign in the
+// ring frame is its sign in the input frame: separation_sign (c, sqrt(p), sqrt(q) all scale by
+// s), classify_point (each slack scales by a positive power of s), and the touching proof of
+// detail/cylinder_touching.hpp (prove_touching_ring). Directions are the same in both frames;
+// points are divided by s on the way out (to_input, in Gmpq, once per answer).
+//
+// Method: L from mpz_lcm of the denominators; integers converted limb by limb (mpzf_from_integer).
+// When L exceeds kRingFrameMaxBits bits (rational input with large, unrelated denominators) the
+// frame is not built and the caller keeps Gmpq: Mpzf numbers then are as large as Gmpq's and
+// no faster.
+#pragma once
+
+#include <CGAL/Gmpq.h>
+#include <CGAL/Gmpz.h>
+#include <CGAL/Mpzf.h>
+#include <gmp.h>
+
+#include <cmath>
+#include <optional>
+
+#include "certcyl/certified/detail/cylinder_certificates.hpp"
+#include "certcyl/number_traits.hpp"
+
+namespace certcyl::detail {
+
+inline constexpr std::size_t kRingFrameMaxBits = 4096;
+
+// The integer n as an Mpzf, exactly. CGAL's Mpzf(const Gmpz&) copies the magnitude's limbs
+// (it ignores the sign, and reads garbage for zero): zero is made apart and the sign applied
+// after.
+inline CGAL::Mpzf mpzf_from_integer(const CGAL::Gmpz& n) {
+  const int sign = mpz_sgn(n.mpz());
+  if (sign == 0) return CGAL::Mpzf(0);
+  const CGAL::Mpzf magnitude(n);
+  return sign < 0 ? CGAL::Mpzf(-magnitude) : magnitude;
+}
+
+// x 2^k as an Mpzf, exactly (by powers of two of at most 2^512 in magnitude, each a double).
+inline CGAL::Mpzf mpzf_times_two_power(CGAL::Mpzf x, long k) {
+  while (k != 0) {
+    const long step = k > 512 ? 512 : (k < -512 ? -512 : k);
+    x = x * CGAL::Mpzf(std::ldexp(1.0, static_cast<int>(step)));
+    k -= step;
+  }
+  return x;
+}
+
+// The pair in the ring frame, and s = L 2^e.
+struct RingFrame {
+  CylinderPair<CGAL::Mpzf> pair;
+  CGAL::Gmpz L = 1;
+  int e = 0;
+  CGAL::Mpzf L_mpzf = CGAL::Mpzf(1);  // L
+
+  // Binary64 world input (already s = 2^e times the input, e the world frame's exponent).
+  static RingFrame from_world(const Cylinder<double>& w0, const Cylinder<double>& w1, int world_exponent) {
+    const auto to_m = [](double x) { return CGAL::Mpzf(x); };
+    return {CylinderPair<CGAL::Mpzf>::make(w0.map(to_m), w1.map(to_m)), CGAL::Gmpz(1), world_exponent, CGAL::Mpzf(1)};
+  }
+
+  // Rational input: L the lcm of the denominators; nullopt when L is too large.
+  static std::optional<RingFrame> from_rational(const Cylinder<Rational>& c0, const Cylinder<Rational>& c1) {
+    CGAL::Gmpz L = 1;
+    for (const Cylinder<Rational>* c : {&c0, &c1})
+      for (const Rational* q : {&c->p0.x, &c->p0.y, &c->p0.z, &c->p1.x, &c->p1.y, &c->p1.z, &c->radius}) {
+        mpz_lcm(L.mpz(), L.mpz(), mpq_denref(q->mpq()));
+        if (mpz_sizeinbase(L.mpz(), 2) > kRingFrameMaxBits) return std::nullopt;
+      }
+    CGAL::Gmpz n;  // one buffer for every coordinate
+    const auto to_m = [&L, &n](const Rational& q) {
+      // q L = numerator (L / denominator), an integer.
+      mpz_divexact(n.mpz(), L.mpz(), mpq_denref(q.mpq()));
+      mpz_mul(n.mpz(), n.mpz(), mpq_numref(q.mpq()));
+      return mpzf_from_integer(n);
+    };
+    RingFrame f{CylinderPair<CGAL::Mpzf>::make(c0.map(to_m), c1.map(to_m)), L, 0};
+    f.L_mpzf = mpzf_from_integer(L);
+    return f;
+  }
+
+  // A point of the world frame (input times 2^world_exponent), in the ring frame.
+  CGAL::Mpzf from_world(const CGAL::Mpzf& x, int world_exponent) const {
+    CGAL::Mpzf y = mpzf_times_two_power(x, static_cast<long>(e) - world_exponent);
+    if (L != 1) y = y * L_mpzf;
+    return y;
+  }
+
+  // The ring point n / w (w > 0) in the input frame: n / (w L 2^e), exactly.
+  Rational to_input(const CGAL::Mpzf& n, const CGAL::Mpzf& w) const {
+    Rational q = Rational(static_cast<CGAL::Gmpq>(n)) / (Rational(static_cast<CGAL::Gmpq>(w)) * Rational(L));
+    Rational y;
+    if (e >= 0) mpq_div_2exp(y.mpq(), q.mpq(), static_cast<mp_bitcnt_t>(e));
+    if (e < 0) mpq_mul_2exp(y.mpq(), q.mpq(), static_cast<mp_bitcnt_t>(-e));
+    return y;
+  }
+};
+
+// The dyadic rational q as an Mpzf, exactly; nullopt when q is not dyadic.
+inline std::optional<CGAL::Mpzf> mpzf_from_dyadic(const Rational& q) {
+  mpz_srcptr den = mpq_denref(q.mpq());
+  const std::size_t shift = mpz_scan1(den, 0);
+  if (mpz_sizeinbase(den, 2) != shift + 1) return std::nullopt;  // not a power of two
+  CGAL::Mpzf x = mpzf_from_integer(CGAL::Gmpz(mpq_numref(q.mpq())));
+  return mpzf_times_two_power(x, -static_cast<long>(shift));
+}
+
+// A rational direction as a parallel direction of dyadic numbers: its coordinates times the
+// least common multiple of their denominators (integers), exactly. Directions need no frame.
+inline Vec3<CGAL::Mpzf> ring_direction(const Vec3<Rational>& D) {
+  CGAL::Gmpz l = 1;
+  for (std::size_t i = 0; i < 3; ++i) mpz_lcm(l.mpz(), l.mpz(), mpq_denref(D[i].mpq()));
+  Vec3<CGAL::Mpzf> out;
+  for (std::size_t i = 0; i < 3; ++i) {
+    CGAL::Gmpz n;
+    mpz_divexact(n.mpz(), l.mpz(), mpq_denref(D[i].mpq()));
+    mpz_mul(n.mpz(), n.mpz(), mpq_numref(D[i].mpq()));
+    out[i] = mpzf_from_integer(n);
+  }
+  return out;
+}
+
+inline Vec3<Rational> mpzf_to_rational(const Vec3<CGAL::Mpzf>& v) {
+  return v.map([](const CGAL::Mpzf& x) { return Rational(static_cast<CGAL::Gmpq>(x)); });
+}
+
+}  // namespace certcyl::detail
