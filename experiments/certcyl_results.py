@@ -21,7 +21,7 @@ import math
 
 READ = []  # every file read through read_csv or note_read, in order
 
-OUTCOMES = ("agree", "false_positive", "false_negative", "class_mismatch", "undecided", "error", "uncertified")
+OUTCOMES = ("agree", "false_positive", "false_negative", "class_mismatch", "undecided", "error", "invalid", "uncertified")
 FAILURES = ("false_positive", "false_negative")
 
 QUERY_TITLES = {

@@ -135,7 +135,7 @@ def gap_bin(lo, hi):
 def gap_rate(rows, out):
     by_query = defaultdict(lambda: defaultdict(lambda: defaultdict(lambda: [0, 0])))
     for r in rows:
-        if r["outcome"] in ("uncertified", "undecided", "error"):
+        if r["outcome"] in ("uncertified", "undecided", "error", "invalid"):
             continue
         b = gap_bin(fnum(r["gap_lo"]), fnum(r["gap_hi"]))
         cell = by_query[r["query"]][r["method"]][b]
@@ -277,7 +277,7 @@ def gap_rate_overview(rows, out):
     hardware = ("double", "long_double", "float")
     data = defaultdict(lambda: defaultdict(lambda: defaultdict(lambda: [0, 0])))
     for r in rows:
-        if r["outcome"] in ("uncertified", "undecided", "error") or r["kind"] in ("sweep", "certified"):
+        if r["outcome"] in ("uncertified", "undecided", "error", "invalid") or r["kind"] in ("sweep", "certified"):
             continue
         base, _, nt = r["method"].partition("/")
         if nt not in hardware:

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Install the Debian packages certcyl needs. Idempotent: packages already present are skipped.
-#   scripts/install-deps.sh            library, command and tests
+#   scripts/install-deps.sh            library, command, Python package and tests
 #   scripts/install-deps.sh --study    also the peer libraries and plotting (experiments)
 #   scripts/install-deps.sh --paper    also LaTeX (the paper)
 #   scripts/install-deps.sh --fuzz     also clang and its sanitizer/libFuzzer runtimes (scripts/fuzz.sh)
@@ -11,10 +11,11 @@ packages=(
   build-essential cmake ccache pkg-config
   libcgal-dev libgmp-dev libmpfr-dev libmpfi-dev libeigen3-dev libqd-dev
   libboost-test-dev nlohmann-json3-dev libcli11-dev libbenchmark-dev libssl-dev
+  pybind11-dev python3-dev python3-numpy
 )
 for arg in "$@"; do
   case "$arg" in
-    --study) packages+=(libfcl-dev libbullet-dev libode-dev python3-matplotlib python3-numpy) ;;
+    --study) packages+=(libfcl-dev libbullet-dev libode-dev python3-matplotlib) ;;
     --paper) packages+=(texlive-latex-recommended texlive-latex-extra latexmk poppler-utils) ;;
     --fuzz) packages+=(clang libclang-rt-14-dev) ;;
     --slurm) packages+=(slurm-wlm munge) ;;

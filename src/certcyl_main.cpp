@@ -66,6 +66,9 @@ int main(int argc, char** argv) {
                   "Only id, meta, answer, the interval of a line query as two doubles (certified: the proved\n"
                   "nearest doubles of the exact endpoints), the gap of a pair and the reason of an invalid answer");
   query->add_option("--threads", threads, "Worker threads (default 1; 0 = all cores)")->check(CLI::Range(0u, 1024u));
+  query->add_flag("--line-buffered", options.line_buffered,
+                  "Answer every line and flush its answer as soon as it is read (for a co-process; without it\n"
+                  "lines are answered in batches, cut short whenever no more input is at hand)");
 
   std::string scene_file;
   unsigned scene_threads = 1;
@@ -160,7 +163,8 @@ int main(int argc, char** argv) {
       "PATH.so (certcyl/plugin.h). The cases come from --cases FILE (`certcyl cases`) or are made as\n"
       "`certcyl cases` makes them (--query, --family, --size, --seed; a plugin without --query: every\n"
       "query it exports). Answers: separated, touching, overlapping, intersecting, undecided, invalid.\n"
-      "Writes results/<name>/ (families.csv, counterexamples.jsonl, summary.txt) and prints the summary.\n"
+      "Writes results/<name>/ (families.csv, counterexamples.jsonl, answers.jsonl, summary.txt) and prints\n"
+      "the summary.\n"
       "Exit status: 0 every case judged, 1 otherwise (what was judged before the error is written).");
   judge->add_option("--answers", judge_options.answers_file, "The method's answers, one JSON line per case");
   judge->add_option("--exec", judge_options.exec_command, "A program answering query lines (run by /bin/sh -c)");
@@ -174,6 +178,18 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0u, 1024u));
   judge->add_option("--name", judge_options.name, "Results folder name under --out (default judge)");
   judge->add_option("--out", judge_options.out_root, "Results root (default: results)");
+  judge->add_option("--label", judge_options.label,
+                    "The judged method's name in the results (default: the plugin's name, the --exec command or\n"
+                    "the answers file's name)");
+  judge->add_option("--timeout", judge_options.timeout_seconds,
+                    "Seconds --exec's program or --plugin's function may take for one answer; then it is killed,\n"
+                    "the answers before it are kept and the judge exits 1 naming the line (default 60; 0: no limit)")
+      ->check(CLI::Range(0.0, 1e6));
+  std::string judge_shard;
+  judge->add_option("--shard", judge_shard,
+                    "Judge shard i of n (i/n, 0-based: the cases whose index is i modulo n) into\n"
+                    "results/<name>/shard-i-of-n, renamed into place when every case is judged; merge the shards'\n"
+                    "answers.jsonl with --answers (experiments/slurm/judge-merge.sh)");
 
   try {
     app.parse(argc, argv);
@@ -211,6 +227,9 @@ int main(int argc, char** argv) {
         if (!shard.empty()) certcyl::cli::parse_shard(shard, study_options.shard_index, study_options.shard_count);
         if (study_options.threads == 0) study_options.threads = std::max(1u, std::thread::hardware_concurrency());
         study_options.plots = !no_plots;
+        study_options.size_given = study->count("--size") > 0;
+        study_options.seed_given = study->count("--seed") > 0;
+        study_options.name_given = study->count("--name") > 0;
         if (!isatty(2) && study->count("--progress") == 0) study_options.progress = false;
         status = certcyl::cli::run_study(study_options, std::cout);
       }
@@ -229,7 +248,15 @@ int main(int argc, char** argv) {
   if (cases->parsed() || judge->parsed()) {
     for (unsigned* t : {&case_spec.threads, &judge_options.spec.threads})
       if (*t == 0) *t = std::max(1u, std::thread::hardware_concurrency());
-    if (judge->parsed()) return certcyl::cli::run_judge(judge_options, std::cout, std::cerr);
+    if (judge->parsed()) {
+      try {
+        if (!judge_shard.empty()) certcyl::cli::parse_shard(judge_shard, judge_options.shard_index, judge_options.shard_count);
+      } catch (const std::exception& e) {
+        std::cerr << "certcyl judge: " << e.what() << '\n';
+        return 1;
+      }
+      return certcyl::cli::run_judge(judge_options, std::cout, std::cerr);
+    }
     try {
       if (certcyl::cli::run_cases(case_spec, std::cout) == 0) return 0;
       std::cerr << "certcyl cases: error writing standard output\n";

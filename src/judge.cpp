@@ -1,5 +1,6 @@
-// `certcyl judge`: the cases (a cases file, or made as `certcyl cases` makes them), the judged
-// method's answers (an answers file, a co-process or a plugin), and the results folder.
+// `certcyl judge`: the cases (a cases file, or made as `certcyl cases` makes them, and this
+// shard's share of them), the judged method's answers (an answers file, a co-process or a
+// plugin), and the results folder (a shard's renamed into place when it is finished).
 #include "judge.hpp"
 
 #include <algorithm>
@@ -44,26 +45,48 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
       if (cases.empty()) throw std::runtime_error("--plugin: " + plugin->name + " exports none of the cases' queries");
     }
 
+    // This shard's cases: every n-th from the i-th, as the study deals its instances.
+    const bool sharded = o.shard_count > 1;
+    if (sharded) {
+      std::vector<Case> mine;
+      for (std::size_t i = static_cast<std::size_t>(o.shard_index); i < cases.size(); i += static_cast<std::size_t>(o.shard_count))
+        mine.push_back(std::move(cases[i]));
+      cases = std::move(mine);
+    }
+    namespace fs = std::filesystem;
+    const fs::path folder = fs::path(o.out_root) / o.name;
+    const fs::path shard_folder =
+        folder / std::string("shard-").append(std::to_string(o.shard_index)).append("-of-").append(std::to_string(o.shard_count));
+    const fs::path partial = fs::path(shard_folder).concat(".partial");
+    if (sharded) {
+      fs::remove_all(partial);
+      fs::remove_all(shard_folder);
+    }
+
+    const Timeout timeout{o.timeout_seconds};
     Answers answers;
     std::string method;
     if (!o.answers_file.empty()) {
       std::ifstream in(o.answers_file);
       if (!in) throw std::runtime_error("--answers: cannot read '" + o.answers_file + "'");
       answers = read_answers(in, o.answers_file, cases);
-      method = std::filesystem::path(o.answers_file).stem().string();
+      method = fs::path(o.answers_file).stem().string();
     } else if (!o.exec_command.empty()) {
-      answers = run_exec(o.exec_command, cases);
+      answers = run_exec(o.exec_command, cases, timeout);
       method = o.exec_command;
     } else {
-      answers = run_plugin(o.plugin_file, cases);
+      answers = run_plugin(o.plugin_file, cases, timeout);
       method = plugin->name;
     }
-    write_results(std::filesystem::path(o.out_root) / o.name, method, cases, answers, out);
+    if (!o.label.empty()) method = o.label;
+    write_results(sharded ? partial : folder, method, cases, answers, out);
     out.flush();
     if (!answers.failure.empty()) {
       err << "certcyl judge: " << answers.failure << '\n';
+      if (sharded) err << "certcyl judge: the shard is not finished; what was judged is in " << partial.string() << '\n';
       return 1;
     }
+    if (sharded) fs::rename(partial, shard_folder);
     return out ? 0 : 1;
   } catch (const std::exception& e) {
     err << "certcyl judge: " << e.what() << '\n';

@@ -5,6 +5,15 @@
 // program answering `certcyl query` lines on its standard input (--exec), or a C plugin
 // (certcyl/plugin.h, --plugin). The cases come from a cases file (--cases, written by
 // `certcyl cases`) or are made in process (--query, --family, --size, --seed).
+//
+// A program or plugin that gives no answer for `timeout_seconds` is killed (its whole process
+// group for --exec) and the run ends as on any failure, with the answers before it kept.
+//
+// A shard i of n judges the cases whose index (in the cases' order) is i modulo n into
+// results/<name>/shard-i-of-n: written as shard-i-of-n.partial and renamed when every case of
+// the shard is judged, so a folder by the final name is always a finished shard. Its
+// answers.jsonl, the shards' concatenated, is an answers file judging the whole cases file
+// exactly as an unsharded run would (with the same --label).
 #pragma once
 
 #include <ostream>
@@ -22,6 +31,9 @@ struct JudgeOptions {
   CaseSpec spec;             // spec.query empty: every query a plugin exports
   std::string name = "judge";
   std::string out_root = "results";
+  std::string label;             // the method's name in the results; empty: from the source
+  double timeout_seconds = 60;   // --timeout; 0: no limit
+  int shard_index = 0, shard_count = 1;
 };
 
 // Runs the command; returns 0 when every case was judged, 1 otherwise (the error on `err`; what

@@ -1,8 +1,10 @@
-// A co-process: the program runs once (/bin/sh -c COMMAND); a writer thread feeds it the cases'
-// query lines in batches while this thread reads its answers, one line per case in order, so
-// neither side waits on a full pipe. A program that dies, writes a line that is not an answer to
-// the case in turn, or stops early ends the run; the answers read until then are kept.
+// A co-process: the program runs once (/bin/sh -c COMMAND, in a process group of its own); a
+// writer thread feeds it the cases' query lines in batches while this thread reads its answers,
+// one line per case in order, so neither side waits on a full pipe. A program that dies, writes
+// a line that is not an answer to the case in turn, stops early or gives no answer within the
+// timeout ends the run (its process group killed); the answers read until then are kept.
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstring>
 #include <stdexcept>
@@ -42,30 +44,33 @@ std::string describe_status(int status) {
 
 std::string excerpt(const std::string& s) { return s.size() <= 120 ? s : s.substr(0, 120) + "..."; }
 
+enum class Read { line, end, timed_out };
+
 // Reads lines from a file descriptor.
 class LineReader {
  public:
   explicit LineReader(int fd) : fd_(fd) {}
-  // The next line without its newline; false at the end of input (a last line without a newline
-  // is returned first).
-  bool next(std::string& line) {
+  // The next line without its newline; `end` at the end of input (a last line without a newline
+  // is returned first), `timed_out` when no line is complete by the deadline.
+  Read next(std::string& line, const Deadline& deadline) {
     for (;;) {
       const auto nl = buffer_.find('\n', start_);
       if (nl != std::string::npos) {
         line.assign(buffer_, start_, nl - start_);
         start_ = nl + 1;
-        return true;
+        return Read::line;
       }
       buffer_.erase(0, start_);
       start_ = 0;
+      if (!deadline.wait_readable(fd_)) return Read::timed_out;
       char chunk[65536];
       const ssize_t n = ::read(fd_, chunk, sizeof chunk);
       if (n < 0 && errno == EINTR) continue;
       if (n <= 0) {
-        if (buffer_.empty()) return false;
+        if (buffer_.empty()) return Read::end;
         line = std::move(buffer_);
         buffer_.clear();
-        return true;
+        return Read::line;
       }
       buffer_.append(chunk, static_cast<std::size_t>(n));
     }
@@ -77,9 +82,22 @@ class LineReader {
   std::size_t start_ = 0;
 };
 
+// Whether the process has ended within the timeout (it is left to be reaped).
+bool ended_within(pid_t pid, const Timeout& timeout) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout.seconds);
+  for (;;) {
+    siginfo_t info{};
+    const int r = ::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT);
+    if (r == 0 && info.si_pid == pid) return true;
+    if (r != 0 && errno != EINTR) return true;  // nothing to wait for
+    if (timeout.seconds > 0 && std::chrono::steady_clock::now() >= end) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+}
+
 }  // namespace
 
-Answers run_exec(const std::string& command, const std::vector<Case>& cases) {
+Answers run_exec(const std::string& command, const std::vector<Case>& cases, const Timeout& timeout) {
   int to_child[2], from_child[2];
   if (::pipe2(to_child, O_CLOEXEC) != 0) throw std::runtime_error(std::string("--exec: pipe: ") + std::strerror(errno));
   if (::pipe2(from_child, O_CLOEXEC) != 0) {
@@ -89,12 +107,15 @@ Answers run_exec(const std::string& command, const std::vector<Case>& cases) {
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error(std::string("--exec: fork: ") + std::strerror(errno));
   if (pid == 0) {
+    // A process group of its own: killing it ends the shell and whatever it started.
+    ::setpgid(0, 0);
     ::dup2(to_child[0], 0);
     ::dup2(from_child[1], 1);
     ::signal(SIGPIPE, SIG_DFL);
     ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
+  ::setpgid(pid, pid);  // as the child does, whichever comes first
   ::close(to_child[0]);
   ::close(from_child[1]);
 
@@ -106,7 +127,8 @@ Answers run_exec(const std::string& command, const std::vector<Case>& cases) {
     pthread_sigmask(SIG_BLOCK, &pipe_signal, nullptr);
     std::string batch;
     for (std::size_t i = 0; i < cases.size(); ++i) {
-      batch += query_line(cases[i]).dump() + '\n';
+      batch += query_line(cases[i]).dump();
+      batch += '\n';
       if ((i + 1) % kBatchLines == 0 || i + 1 == cases.size()) {
         if (!write_all(fd, batch)) break;
         batch.clear();
@@ -120,35 +142,46 @@ Answers run_exec(const std::string& command, const std::vector<Case>& cases) {
   LineReader reader(from_child[0]);
   std::string text;
   std::size_t n = 0;
-  for (; n < cases.size() && reader.next(text); ++n) {
-    const std::string where = "line " + std::to_string(n + 1) + " of the program's output (case '" + cases[n].id + "')";
+  const auto answered_so_far = [&] { return "after answering " + std::to_string(n) + " of " + std::to_string(cases.size()) + " lines"; };
+  for (; n < cases.size(); ++n) {
+    const Read r = reader.next(text, Deadline(timeout));
+    if (r == Read::end) break;
+    if (r == Read::timed_out) {
+      result.failure = "the program gave no answer to line " + std::to_string(n + 1) + " (case '" + cases[n].id + "') within " +
+                       timeout.text() + " (--timeout) and was killed, " + answered_so_far();
+      break;
+    }
     try {
       const nlohmann::json j = nlohmann::json::parse(text);
       if (!j.is_object() || !j.contains("id")) throw std::invalid_argument("expected a JSON object with \"id\"");
       if (j["id"] != cases[n].id) throw std::invalid_argument("id " + j["id"].dump() + " answers another case");
       result.answers[n] = answered_line(j);
     } catch (const std::exception& e) {
-      result.failure = where + ": " + e.what() + ": " + excerpt(text);
-      ::kill(pid, SIGKILL);
+      result.failure = "line " + std::to_string(n + 1) + " of the program's output (case '" + cases[n].id + "'): " + e.what() + ": " +
+                       excerpt(text);
       break;
     }
   }
-  if (result.failure.empty() && n < cases.size()) {
-    // The program closed its output early: say how it ended.
-    int status = 0;
-    ::close(from_child[0]);
-    writer.join();
-    ::waitpid(pid, &status, 0);
-    result.failure = "the program " + describe_status(status) + " after answering " + std::to_string(n) + " of " +
-                     std::to_string(cases.size()) + " lines (no answer to line " + std::to_string(n + 1) + ", case '" + cases[n].id + "')";
-    return result;
+  bool silent = false;  // every line answered, but the output neither ended nor went on
+  if (result.failure.empty() && n == cases.size()) {
+    const Read r = reader.next(text, Deadline(timeout));
+    if (r == Read::line) result.failure = "the program wrote more lines than it was given: " + excerpt(text);
+    silent = r == Read::timed_out;
   }
-  if (result.failure.empty() && reader.next(text))
-    result.failure = "the program wrote more lines than it was given: " + excerpt(text);
+  // A program that failed is killed at once; one that stopped answering or has answered every
+  // line is given the timeout to end.
+  const bool ended = result.failure.empty() && !silent && ended_within(pid, timeout);
+  ::kill(-pid, SIGKILL);  // whatever is left of its process group
   ::close(from_child[0]);
   writer.join();
   int status = 0;
   ::waitpid(pid, &status, 0);
+  if (result.failure.empty() && n < cases.size()) {
+    // The program closed its output early: say how it ended.
+    result.failure = "the program " +
+                     (ended ? describe_status(status) : "stopped answering, did not end within " + timeout.text() + " (--timeout) and was killed") +
+                     " " + answered_so_far() + " (no answer to line " + std::to_string(n + 1) + ", case '" + cases[n].id + "')";
+  }
   return result;
 }
 

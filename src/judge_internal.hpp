@@ -9,12 +9,19 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <istream>
 #include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
+
+#include <poll.h>
 
 #include "cases.hpp"
 #include "certcyl/study/methods.hpp"
@@ -35,17 +42,54 @@ struct Answers {
 };
 
 // The study's reading of an answer: separated, touching, overlapping (three-valued),
-// intersecting (a boolean "they meet"), undecided; invalid (the method's computation left the
-// finite doubles) and error (the method failed on the input) are the study's `error`. Throws
-// std::invalid_argument on any other word.
+// intersecting (a boolean "they meet"), undecided; invalid (a value the method reported left the
+// finite doubles: the study's `invalid`, counted apart) and error (the method failed on the
+// input: the study's `error`). Throws std::invalid_argument on any other word.
 Answered answered(const std::string& answer);
 
-// The answer of one answer line (an object): its "answer", or the study's reading of a
-// `certcyl query` line: an error line {"id", "error"} is the method's error, and "invalid" with
-// a "computed_answer" (a floating method whose interval left the finite doubles) is judged by
-// the computed answer, as the study judges the answer and not the interval. Throws
+// The answer of one answer line (an object): its "answer" (a `certcyl query` line's "invalid"
+// is invalid whatever its "computed_answer", as the study counts a method whose reported value
+// is not finite), or an error line {"id", "error"}, the method's error. Throws
 // std::invalid_argument as answered() does, and when there is no answer.
 Answered answered_line(const nlohmann::json& line);
+
+// How long a program or a plugin may take for one answer (--timeout); 0: no limit.
+struct Timeout {
+  double seconds = 0;
+  // "60 s", as the messages quote it.
+  std::string text() const {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g s", seconds);
+    return buf;
+  }
+};
+
+// The moment the answer awaited now is due.
+class Deadline {
+ public:
+  explicit Deadline(const Timeout& t)
+      : limited_(t.seconds > 0), at_(std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                                            std::chrono::duration<double>(limited_ ? t.seconds : 0))) {}
+  // Waits until fd has input (or its writer has gone); false when the deadline passed first.
+  bool wait_readable(int fd) const {
+    for (;;) {
+      int ms = -1;
+      if (limited_) {
+        const auto left = std::chrono::duration<double, std::milli>(at_ - std::chrono::steady_clock::now()).count();
+        if (left <= 0) return false;
+        ms = static_cast<int>(std::min(std::ceil(left), 3.6e6));
+      }
+      pollfd p{fd, POLLIN, 0};
+      const int n = ::poll(&p, 1, ms);
+      if (n > 0) return true;
+      if (n < 0 && errno != EINTR) return true;  // the read that follows reports the error
+    }
+  }
+
+ private:
+  bool limited_;
+  std::chrono::steady_clock::time_point at_;
+};
 
 // An answers file: one {"id", "answer"} line per case, any order, other members ignored (so the
 // output of `certcyl query` is an answers file; its error lines {"id", "error"} are errors of
@@ -55,8 +99,9 @@ Answers read_answers(std::istream& in, const std::string& label, const std::vect
 
 // Starts `command` with /bin/sh -c, writes query_line() of every case to its standard input and
 // reads one line back per case: {"id", "answer"} (or a `certcyl query` error line) with the
-// case's id.
-Answers run_exec(const std::string& command, const std::vector<Case>& cases);
+// case's id. The program runs in a process group of its own, killed as a whole when it fails
+// or gives no answer within `timeout`.
+Answers run_exec(const std::string& command, const std::vector<Case>& cases, const Timeout& timeout);
 
 // A plugin's name and the study queries it exports (certcyl_plugin_<query>); throws
 // std::runtime_error when it cannot be loaded or exports none.
@@ -66,10 +111,12 @@ struct PluginInfo {
 };
 PluginInfo inspect_plugin(const std::string& path);
 // Runs the plugin on the cases in a child process; every case's query must be one it exports.
-Answers run_plugin(const std::string& path, const std::vector<Case>& cases);
+// The child is killed when one call gives no answer within `timeout`.
+Answers run_plugin(const std::string& path, const std::vector<Case>& cases, const Timeout& timeout);
 
-// Writes dir/families.csv, dir/counterexamples.jsonl and dir/summary.txt for the answered
-// cases and prints the summary table on `out`.
+// Writes dir/families.csv, dir/counterexamples.jsonl, dir/answers.jsonl (an answers file of
+// the answered cases, in the cases' order: {"id", "answer"} with the answer as judged) and
+// dir/summary.txt, and prints the summary table on `out`.
 void write_results(const std::filesystem::path& dir, const std::string& method, const std::vector<Case>& cases,
                    const Answers& answers, std::ostream& out);
 

@@ -1,7 +1,8 @@
 // A C plugin (certcyl/plugin.h): loaded with dlopen in a child process, which answers the cases
 // one by one and writes each answer to a pipe as it is given (case index, return value), so a
 // crash in the plugin ends the run with every answer before it in hand, and the parent names
-// the case it crashed on and the signal.
+// the case it crashed on and the signal; a call that gives no answer within the timeout is
+// named likewise, and the child killed.
 #include "certcyl/plugin.h"
 
 #include <cerrno>
@@ -116,7 +117,7 @@ PluginInfo inspect_plugin(const std::string& path) {
   return info;
 }
 
-Answers run_plugin(const std::string& path, const std::vector<Case>& cases) {
+Answers run_plugin(const std::string& path, const std::vector<Case>& cases, const Timeout& timeout) {
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error(std::string("--plugin: pipe: ") + std::strerror(errno));
   const pid_t pid = ::fork();
@@ -132,11 +133,22 @@ Answers run_plugin(const std::string& path, const std::vector<Case>& cases) {
   Record r{};
   for (;;) {
     std::size_t got = 0;
+    const Deadline deadline(timeout);
+    bool hung = false;
     while (got < sizeof r) {
+      if (!deadline.wait_readable(fds[0])) {
+        hung = true;
+        break;
+      }
       const ssize_t n = ::read(fds[0], reinterpret_cast<char*>(&r) + got, sizeof r - got);
       if (n < 0 && errno == EINTR) continue;
       if (n <= 0) break;
       got += static_cast<std::size_t>(n);
+    }
+    if (hung && next < cases.size()) {
+      result.failure = "plugin hung on " + line_of(cases, next) + ", case '" + cases[next].id + "': " + symbol_of(cases[next].query) +
+                       " gave no answer within " + timeout.text() + " (--timeout) and was killed";
+      break;
     }
     if (got < sizeof r) break;
     if (r.index >= cases.size()) {

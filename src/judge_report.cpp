@@ -1,8 +1,8 @@
 // The judged method's outcomes, exactly as the study's (outcome_of: judge against the certified
 // answer, "uncertified" where the certified query was undecided), counted per query and family
 // with a 95% Wilson interval of the failure rate (failures: the study's disagreements, false
-// positives and false negatives, among the certified cases), the counterexamples, and the
-// summary table.
+// positives and false negatives, among the certified cases), the counterexamples, the answers
+// as judged, and the summary table.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -32,7 +32,8 @@ struct Counts {
   }
 };
 
-const char* const kOutcomes[] = {"agree", "false_positive", "false_negative", "class_mismatch", "undecided", "error", "uncertified"};
+const char* const kOutcomes[] = {"agree",     "false_positive", "false_negative", "class_mismatch",
+                                 "undecided", "error",          "invalid",        "uncertified"};
 
 // The 95% Wilson score interval of a proportion of `failures` in `n` trials (n > 0).
 std::pair<double, double> wilson(std::size_t failures, std::size_t n) {
@@ -61,12 +62,14 @@ Answered answered(const std::string& answer) {
   Answered a{answer, {}};
   if (answer == "intersecting") {
     a.output = study::boolean_answer(true);
-  } else if (answer == "invalid" || answer == "error") {
+  } else if (answer == "invalid") {
+    a.output.invalid = true;
+  } else if (answer == "error") {
     a.output.error = true;
   } else if (const auto x = answer_from_string(answer)) {
     a.output = study::three_valued(*x);
   } else {
-    throw std::invalid_argument("answer: expected separated, touching, overlapping, intersecting, undecided or invalid, got '" +
+    throw std::invalid_argument("answer: expected separated, touching, overlapping, intersecting, undecided, invalid or error, got '" +
                                 answer + "'");
   }
   return a;
@@ -75,8 +78,6 @@ Answered answered(const std::string& answer) {
 Answered answered_line(const nlohmann::json& j) {
   if (j.contains("answer")) {
     if (!j["answer"].is_string()) throw std::invalid_argument("answer: expected a string");
-    if (j["answer"] == "invalid" && j.contains("computed_answer") && j["computed_answer"].is_string())
-      return answered(j["computed_answer"].get<std::string>());
     return answered(j["answer"].get<std::string>());
   }
   if (j.contains("error")) return answered("error");
@@ -114,8 +115,8 @@ void write_results(const fs::path& dir, const std::string& method, const std::ve
   std::ostringstream table;
   table << "certcyl judge: " << method << ", " << judged << " of " << cases.size() << " cases judged\n";
   char line[256];
-  std::snprintf(line, sizeof line, "%-24s %-20s %6s %6s %6s %6s %6s %6s %6s %6s  %s\n", "query", "family", "cases", "agree", "f.pos",
-                "f.neg", "mism.", "undec.", "error", "uncert", "failure rate [95% CI]");
+  std::snprintf(line, sizeof line, "%-24s %-20s %6s %6s %6s %6s %6s %6s %6s %6s %6s  %s\n", "query", "family", "cases", "agree",
+                "f.pos", "f.neg", "mism.", "undec.", "error", "inval.", "uncert", "failure rate [95% CI]");
   table << line;
   auto row = [&](const std::string& query, const std::string& family, const Counts& n) {
     csv << method << ',' << query << ',' << family << ',' << n.cases;
@@ -130,9 +131,9 @@ void write_results(const fs::path& dir, const std::string& method, const std::ve
     } else {
       csv << ",,,\n";
     }
-    std::snprintf(line, sizeof line, "%-24s %-20s %6zu %6zu %6zu %6zu %6zu %6zu %6zu %6zu  %s\n", query.c_str(), family.c_str(), n.cases,
+    std::snprintf(line, sizeof line, "%-24s %-20s %6zu %6zu %6zu %6zu %6zu %6zu %6zu %6zu %6zu  %s\n", query.c_str(), family.c_str(), n.cases,
                   n.at("agree"), n.at("false_positive"), n.at("false_negative"), n.at("class_mismatch"), n.at("undecided"),
-                  n.at("error"), n.at("uncertified"), rate.c_str());
+                  n.at("error"), n.at("invalid"), n.at("uncertified"), rate.c_str());
     table << line;
   };
   for (const auto& [key, n] : by_family) row(key.first, key.second, n);
@@ -159,9 +160,14 @@ void write_results(const fs::path& dir, const std::string& method, const std::ve
   table << written << " counterexamples (distinct inputs) in " << (dir / "counterexamples.jsonl").string() << '\n';
   if (!answers.failure.empty()) table << "not all cases judged: " << answers.failure << '\n';
 
+  // answers.jsonl: the answers as judged, an answers file for the same cases (a shard's, merged).
+  std::ofstream given(dir / "answers.jsonl");
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    if (answers.answers[i]) given << nlohmann::ordered_json{{"id", cases[i].id}, {"answer", answers.answers[i]->answer}}.dump() << '\n';
+
   std::ofstream summary(dir / "summary.txt");
   summary << table.str();
-  for (std::ofstream* f : {&csv, &cx, &summary}) {
+  for (std::ofstream* f : {&csv, &cx, &given, &summary}) {
     f->flush();
     if (!*f) throw std::runtime_error("cannot write the results in " + dir.string());
   }

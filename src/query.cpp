@@ -253,9 +253,10 @@ int run_query(std::istream& in, std::ostream& out, const QueryOptions& options, 
     {
       const InterruptibleRead reading;
       while (lines.size() < batch_size) {
-        // No more input at hand: answer what was read now (a co-process that writes a line and
-        // waits for its answer gets it; input from a file still fills whole batches).
-        if (!lines.empty() && sb->in_avail() <= 0) break;
+        // No more input at hand, or --line-buffered: answer what was read now (a co-process
+        // that writes a line and waits for its answer gets it; input from a file still fills
+        // whole batches without the option).
+        if (!lines.empty() && (options.line_buffered || sb->in_avail() <= 0)) break;
         if (!read_line(*sb, line, kMaxLineBytes)) {
           eof = true;
           break;

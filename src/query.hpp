@@ -35,6 +35,11 @@ struct QueryOptions {
   // two (proved nearest, for the certified method) doubles, the gap of a pair, and the reason
   // of an invalid answer.
   bool brief = false;
+  // --line-buffered: every line is answered and its answer written and flushed as soon as it is
+  // read. Without it lines are answered in batches of up to 256 x threads, cut short whenever
+  // no more input is at hand, so a co-process gets its answer either way; the option makes it
+  // so whatever the input reports as available (and gives up batching across threads).
+  bool line_buffered = false;
 };
 
 // Limits on one input line.
@@ -69,7 +74,7 @@ std::vector<std::string> all_methods();
 // error, 0 for none); never throws.
 ojson answer_line(const std::string& line, const QueryOptions& options, std::size_t line_number = 0);
 
-// Runs the command on a stream. Returns 0 when every line was answered, 2 when some line had an
+// Runs the command on a stream (batches as QueryOptions::line_buffered says). Returns 0 when every line was answered, 2 when some line had an
 // error, 1 on an I/O failure, 128 + the signal's number when SIGINT or SIGTERM ended the run
 // (interrupt.hpp: every complete answered line is written first, never a partial one).
 int run_query(std::istream& in, std::ostream& out, const QueryOptions& options, unsigned threads);

@@ -13,6 +13,7 @@
 //   machine.json          compiler, flags, CPU, commit, libraries, options
 //   failure_maps/*.csv    the 2-D ulp perturbation grids, one column per method (+ *.json)
 //   hunt.csv              the worst input found per method, in hexfloats
+//   Core_Diagnostics      CORE::Expr's warnings (when it gave any), counted in summary.txt
 //   figures/*.png|pdf     written by experiments/plot_study.py from the CSV files
 //   manifest.json         written last: size, rows and SHA-256 of every file but the figures
 // The folder is written as <parent>/.<name>.partial and renamed when complete, replacing any
@@ -21,6 +22,7 @@
 #include <chrono>
 #include <fstream>
 #include <iomanip>
+#include <optional>
 
 #include "study_internal.hpp"
 #include "study_files.hpp"
@@ -29,6 +31,27 @@
 namespace certcyl::cli {
 using namespace detail;
 using namespace certcyl::study;
+
+namespace {
+
+// CORE::Expr appends its warnings to Core_Diagnostics in the working directory
+// (CGAL/CORE/CoreAux_impl.h, core_error): the run works inside its folder, so they stay with its
+// results (its forked hunts inherit the folder), never in the caller's directory.
+class WorkingDirectory {
+ public:
+  explicit WorkingDirectory(const fs::path& dir) : previous_(fs::current_path()) { fs::current_path(dir); }
+  ~WorkingDirectory() {
+    std::error_code ignored;
+    fs::current_path(previous_, ignored);
+  }
+  WorkingDirectory(const WorkingDirectory&) = delete;
+  WorkingDirectory& operator=(const WorkingDirectory&) = delete;
+
+ private:
+  fs::path previous_;
+};
+
+}  // namespace
 
 int run_study(StudyOptions o, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
@@ -46,7 +69,8 @@ int run_study(StudyOptions o, std::ostream& out) {
   const bool sharded = o.shard_count > 1;
   if (sharded) dir /= "shard-" + std::to_string(o.shard_index) + "-of-" + std::to_string(o.shard_count);
   // Everything is written aside and the folder takes its place when complete (study_manifest.cpp).
-  const fs::path work = begin_folder(dir);
+  const fs::path work = fs::absolute(begin_folder(dir));
+  std::optional<WorkingDirectory> inside(std::in_place, work);
 
   std::vector<Planned> plan = plan_instances(o);
   std::vector<std::vector<Row>> rows = run_instances(o, registry, plan);
@@ -60,6 +84,7 @@ int run_study(StudyOptions o, std::ostream& out) {
   if (o.hunt_evaluations > 0) run_hunt(o, registry, work);
   write_whole(work / "machine.json", machine_json(o, peers).dump(2) + '\n');
   const std::string table = sharded ? std::string() : write_summary(work);
+  inside.reset();
   seal_folder(work, dir);
 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

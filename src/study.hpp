@@ -14,7 +14,8 @@ struct StudyOptions {
   std::string size = "default";      // tiny | small | default | large | N (instances per family and query)
   std::uint64_t seed = 1;
   unsigned threads = 2;
-  std::string config_file;           // JSON; the command-line options override it
+  std::string config_file;           // JSON; --size, --seed and --name given override its keys
+  bool size_given = false, seed_given = false, name_given = false;  // on the command line
   int shard_index = 0, shard_count = 1;
   bool plots = true;
   bool progress = true;
@@ -34,7 +35,8 @@ void parse_shard(const std::string& s, int& index, int& count);
 // else "expected an integer in [lo, hi], got 'text'": the check of --seed and --threads.
 std::string integer_error(const std::string& text, unsigned long long lo, unsigned long long hi);
 
-// Fills the options from the configuration file and the size preset and checks every option
+// Fills the options from the configuration file and the size preset (an option given on the
+// command line, size_given and the like, wins over the file's key) and checks every option
 // and key before any work: its JSON type, its range (integers as JSON integers, never truncated
 // or wrapped), the families (names of study::all_families()) and the method filters (each a
 // substring of some name in method_names), a plain folder name (results stay inside --out).

@@ -67,7 +67,8 @@ std::string x_hex(const std::vector<double>& x);
 
 // ---- Configuration and plan (study_plan.cpp) ---------------------------------------------------
 
-// The size preset, then the configuration file, fill the options the command line left unset.
+// The configuration file fills the options (the command line's --size, --seed and --name win),
+// then the size preset what is left unset.
 void apply_size(StudyOptions& o);
 void apply_config(StudyOptions& o);
 

@@ -16,7 +16,7 @@ using namespace certcyl::study;
 namespace {
 
 char answer_code(const MethodOutput& m) {
-  if (m.error) return 'e';
+  if (m.error || m.invalid) return 'e';
   if (m.intersecting) return 'i';
   switch (m.answer) {
     case Answer::separated: return 's';
@@ -137,7 +137,7 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
                                 {"cells", n},
                                 {"ulps_per_cell", o.map_step},
                                 {"map_strides", strides},
-                                {"codes", "s separated, t touching, o overlapping, i intersecting (boolean methods), u undecided, e error, "
+                                {"codes", "s separated, t touching, o overlapping, i intersecting (boolean methods), u undecided, e error or invalid (a reported value not finite), "
                                           ". not evaluated (a slow method runs on every map_stride-th row and column through the centre)"}};
     write_whole(maps / (spec.name + ".json"), meta.dump(2) + '\n');
   }

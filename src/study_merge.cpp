@@ -3,6 +3,7 @@
 // manifest of their own.
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <set>
 #include <stdexcept>
 
@@ -119,6 +120,8 @@ int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
   // Instances and inputs in instance order; hunting lines in method order; maps from shard 0.
   std::vector<std::pair<std::uint64_t, std::string>> rows, inputs;
   std::vector<std::string> hunt;
+  std::ostringstream core_diagnostics;
+  fs::remove(dir / "Core_Diagnostics");
   for (const fs::path& s : shards) {
     auto read = [&](const char* file, std::vector<std::pair<std::uint64_t, std::string>>& into, std::size_t id_field) {
       std::ifstream in(s / file);
@@ -140,7 +143,13 @@ int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
     std::getline(h, line);
     while (std::getline(h, line)) hunt.push_back(line);
     if (fs::exists(s / "failure_maps")) fs::copy(s / "failure_maps", dir / "failure_maps", fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+    // CORE::Expr's warnings, every shard's in shard order.
+    if (fs::exists(s / "Core_Diagnostics")) {
+      std::ifstream from(s / "Core_Diagnostics", std::ios::binary);
+      core_diagnostics << from.rdbuf();
+    }
   }
+  if (core_diagnostics.tellp() > 0) write_whole(dir / "Core_Diagnostics", core_diagnostics.str());
   std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::stable_sort(inputs.begin(), inputs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::sort(hunt.begin(), hunt.end());

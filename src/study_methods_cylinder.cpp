@@ -2,6 +2,8 @@
 // Eberly's separating-axis seed as written and corrected in every generic number type, with
 // sweeps of its tolerance choices in double (bisection steps, comparison strictness, the
 // parallel-axes threshold).
+#include <cmath>
+
 #include "certcyl/certified/cylinder_cylinder.hpp"
 #include "certcyl/seeds/eberly_cylinders.hpp"
 #include "study_methods.hpp"
@@ -10,14 +12,18 @@ namespace certcyl::cli {
 namespace {
 
 // The seed in one number type. Its three-valued answer: as written it restates the boolean
-// (separated or overlapping), corrected it reports touching when only f(D) = 0 was found.
+// (separated or overlapping), corrected it reports touching when only f(D) = 0 was found;
+// invalid when the direction it found is not finite, as `certcyl query` answers "invalid".
 study::MethodOutput run_eberly(const NumberTypeSpec& spec, const EberlyParameters& params, const std::vector<double>& x) {
   return dispatch(spec, [&]<class NT>() -> study::MethodOutput {
     if constexpr (NumberTraits<NT>::has_sqrt && NumberTraits<NT>::is_field) {
       try {
         const auto r = eberly_separated(to_nt<NT>(study::cylinder_at(x, 0)), to_nt<NT>(study::cylinder_at(x, 7)), params);
-        if (params.variant == EberlyVariant::as_written) return study::boolean_answer(!r.separated);
-        return study::three_valued(r.answer);
+        study::MethodOutput m =
+            params.variant == EberlyVariant::as_written ? study::boolean_answer(!r.separated) : study::three_valued(r.answer);
+        for (const NT& c : {r.direction.x, r.direction.y, r.direction.z})
+          if (!std::isfinite(nt::to_double(c))) m.invalid = true;
+        return m;
       } catch (const CGAL::Uncertain_conversion_exception&) {
         return study::three_valued(Answer::undecided);
       }

@@ -1,5 +1,7 @@
 // The study's methods for line, ray and segment queries: the certified query, the robust double
 // method, and the seeds (Shene and Gullotti, each as written and corrected) in every generic number type.
+#include <cmath>
+
 #include "certcyl/certified/line_cylinder.hpp"
 #include "certcyl/robust/line_cylinder.hpp"
 #include "certcyl/seeds/gullotti_line_elliptic_cylinder.hpp"
@@ -15,9 +17,17 @@ using study::MethodKind;
 using study::MethodOutput;
 using study::Query;
 
+// The answer and the entry parameter; invalid when an endpoint it reports is not finite (its
+// enclosure leaves the doubles), as `certcyl query` answers "invalid".
 template <class NT>
 MethodOutput from_interval(const LineInterval<NT>& r) {
-  return study::three_valued(r.answer, r.in ? nt::to_double(r.in->t) : std::numeric_limits<double>::quiet_NaN());
+  MethodOutput m = study::three_valued(r.answer, r.in ? nt::to_double(r.in->t) : std::numeric_limits<double>::quiet_NaN());
+  for (const auto* e : {&r.in, &r.out}) {
+    if (!*e) continue;
+    const auto [lo, hi] = nt::to_interval((*e)->t);
+    if (!std::isfinite(lo) || !std::isfinite(hi)) m.invalid = true;
+  }
+  return m;
 }
 
 // Calls f(line_like, solid) with the instance's primitives of the query, built by `make`.

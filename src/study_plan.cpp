@@ -136,6 +136,8 @@ void apply_size(StudyOptions& o) {
   if (o.hunt_evaluations == 0) o.hunt_evaluations = std::min(kMaxHuntEvaluations, std::max(20L, 12 * count));
 }
 
+// The file's keys, each checked; --size, --seed and --name given on the command line win over its
+// size, seed and name.
 void apply_config(StudyOptions& o) {
   if (o.config_file.empty()) return;
   const std::string text = read_config(o.config_file);
@@ -151,6 +153,7 @@ void apply_config(StudyOptions& o) {
                                 (at != std::string::npos ? what.substr(at) : ": " + (tag == std::string::npos ? what : what.substr(tag + 2))));
   }
   if (!j.is_object()) throw std::invalid_argument("--config: expected a JSON object, got " + std::string(j.type_name()));
+  const StudyOptions command_line = o;
   for (const auto& [key, value] : j.items()) {
     const std::string k = "--config: " + key;
     if (key == "per_family") o.per_family = json_integer<long>(value, k, 1, kMaxPerFamily);
@@ -164,6 +167,9 @@ void apply_config(StudyOptions& o) {
     else if (key == "name") check_folder_name(o.name = json_string(value, k), k);
     else throw std::invalid_argument("--config: unknown key '" + key + "' (per_family, map_cells, map_step, hunt_evaluations, methods, families, size, seed, name)");
   }
+  if (o.size_given) o.size = command_line.size;
+  if (o.seed_given) o.seed = command_line.seed;
+  if (o.name_given) o.name = command_line.name;
 }
 
 std::uint64_t mix(std::uint64_t h, std::uint64_t v) {

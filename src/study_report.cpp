@@ -1,7 +1,9 @@
 // The report of a results folder, read from its CSV files only (so a merge reports the same as
 // an unsharded run): the disagreement tables per method, per query and per family
 // (summary.txt, summary.csv, summary_families.csv), the stages that decided the certified cylinder
-// pairs (stages.csv, study_stages.cpp), and the figures (experiments/plot_study.py).
+// pairs (stages.csv, study_stages.cpp), the count of CORE::Expr's warnings (Core_Diagnostics), and
+// the figures (experiments/plot_study.py).
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -25,10 +27,10 @@ namespace {
 struct Tally {
   std::string kind;
   std::set<std::string> queries;
-  long n = 0, fp = 0, fn = 0, cls = 0, undecided = 0, errors = 0;
+  long n = 0, fp = 0, fn = 0, cls = 0, undecided = 0, errors = 0, invalid = 0;
   std::vector<double> ns;
   double rate() const {
-    const long decided = n - undecided - errors;
+    const long decided = n - undecided - errors - invalid;
     return decided > 0 ? static_cast<double>(fp + fn) / static_cast<double>(decided) : 0.0;
   }
   double median_ns() {
@@ -46,6 +48,7 @@ struct Tally {
     cls += r.outcome == "class_mismatch";
     undecided += r.outcome == "undecided";
     errors += r.outcome == "error";
+    invalid += r.outcome == "invalid";
     ns.push_back(r.ns);
   }
 };
@@ -58,17 +61,18 @@ std::string summary_table(std::map<std::string, Tally>& by_method, const Checks&
   std::ostringstream os;
   os << std::left << std::setw(46) << "method" << ' ' << std::setw(16) << "kind" << std::right << std::setw(4) << "q" << std::setw(8) << "n"
      << std::setw(7) << "FP" << std::setw(7) << "FN" << std::setw(7) << "class" << std::setw(7) << "undec" << std::setw(6) << "err"
-     << std::setw(10) << "rate" << std::setw(11) << "ns(med)" << '\n';
-  os << std::string(130, '-') << '\n';
+     << std::setw(6) << "inv" << std::setw(10) << "rate" << std::setw(11) << "ns(med)" << '\n';
+  os << std::string(136, '-') << '\n';
   for (auto& [name, t] : by_method) {
     char rate[32];
     std::snprintf(rate, sizeof rate, "%.2e", t.rate());
     os << std::left << std::setw(46) << name << ' ' << std::setw(16) << t.kind << std::right << std::setw(4) << t.queries.size() << std::setw(8)
        << t.n << std::setw(7) << t.fp << std::setw(7) << t.fn << std::setw(7) << t.cls << std::setw(7) << t.undecided << std::setw(6)
-       << t.errors << std::setw(10) << rate << std::setw(11) << std::fixed << std::setprecision(0) << t.median_ns() << '\n';
+       << t.errors << std::setw(6) << t.invalid << std::setw(10) << rate << std::setw(11) << std::fixed << std::setprecision(0)
+       << t.median_ns() << '\n';
     os.unsetf(std::ios::fixed);
   }
-  os << "rate = (FP + FN) / decided answers; class = touching/overlapping confused; q = queries covered.\n";
+  os << "rate = (FP + FN) / decided answers; class = touching/overlapping confused; inv = a reported value not finite; q = queries covered.\n";
   os << "checks: " << c.instances << " instances, " << c.uncertified << " left undecided by the certified query, "
      << c.gap_sign_mismatch << " gap-sign mismatches, " << c.construction_mismatch
      << " disagreements between construction and certified answer.\n";
@@ -93,6 +97,28 @@ Checks checks_from_inputs(const fs::path& inputs_csv) {
   return c;
 }
 
+// CORE::Expr's warnings in dir/Core_Diagnostics (one line each, "CORE WARNING (at FILE: LINE):
+// MESSAGE"), counted per message, most frequent first.
+std::string core_diagnostics(const fs::path& dir) {
+  std::ifstream in(dir / "Core_Diagnostics");
+  std::map<std::string, long> by_message;
+  long total = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty()) continue;
+    const auto colon = line.find("): ");
+    ++by_message[colon == std::string::npos ? line : line.substr(colon + 3)];
+    ++total;
+  }
+  std::vector<std::pair<long, std::string>> counts;
+  for (const auto& [message, n] : by_message) counts.emplace_back(-n, message);
+  std::sort(counts.begin(), counts.end());
+  std::ostringstream os;
+  os << "CORE::Expr diagnostics: " << total << " warning" << (total == 1 ? "" : "s") << " in Core_Diagnostics";
+  for (std::size_t i = 0; i < counts.size(); ++i) os << (i == 0 ? " (" : ", ") << -counts[i].first << " \"" << counts[i].second << '"';
+  os << (counts.empty() ? "" : ")") << ".\n";
+  return os.str();
+}
+
 }  // namespace
 
 // Summary from instances.csv and inputs.csv (so a merge gives the same tables).
@@ -112,19 +138,19 @@ std::string write_summary(const fs::path& dir) {
     }
   }
   const Checks c = checks_from_inputs(dir / "inputs.csv");
-  const std::string table = summary_table(by_method, c) + '\n' + write_stages(dir);
+  const std::string table = summary_table(by_method, c) + core_diagnostics(dir) + '\n' + write_stages(dir);
   write_whole(dir / "summary.txt", table);
   std::ofstream csv(dir / "summary.csv");
-  csv << "query,method,kind,n,false_positive,false_negative,class_mismatch,undecided,error,disagreement_rate,median_ns\n";
+  csv << "query,method,kind,n,false_positive,false_negative,class_mismatch,undecided,error,invalid,disagreement_rate,median_ns\n";
   for (auto& [key, t] : by_method_query)
     csv << std::get<0>(key) << ',' << std::get<1>(key) << ',' << t.kind << ',' << t.n << ',' << t.fp << ',' << t.fn << ',' << t.cls << ','
-        << t.undecided << ',' << t.errors << ',' << num(t.rate()) << ',' << num(t.median_ns()) << '\n';
+        << t.undecided << ',' << t.errors << ',' << t.invalid << ',' << num(t.rate()) << ',' << num(t.median_ns()) << '\n';
   close_written(csv, dir / "summary.csv");
   std::ofstream fam(dir / "summary_families.csv");
-  fam << "query,family,method,kind,n,false_positive,false_negative,class_mismatch,undecided,error,disagreement_rate\n";
+  fam << "query,family,method,kind,n,false_positive,false_negative,class_mismatch,undecided,error,invalid,disagreement_rate\n";
   for (auto& [key, t] : by_family)
     fam << std::get<0>(key) << ',' << std::get<1>(key) << ',' << std::get<2>(key) << ',' << t.kind << ',' << t.n << ',' << t.fp << ','
-        << t.fn << ',' << t.cls << ',' << t.undecided << ',' << t.errors << ',' << num(t.rate()) << '\n';
+        << t.fn << ',' << t.cls << ',' << t.undecided << ',' << t.errors << ',' << t.invalid << ',' << num(t.rate()) << '\n';
   close_written(fam, dir / "summary_families.csv");
   return table;
 }

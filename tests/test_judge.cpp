@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -262,7 +263,7 @@ BOOST_AUTO_TEST_CASE(coprocess_gets_the_study_counts) {
   BOOST_TEST_REQUIRE(r.status == 0, r.err);
   const auto csv = families_csv(s.dir / "results/judge/families.csv");
   for (const auto& [family, outcomes] : study_counts)
-    for (const char* o : {"agree", "false_positive", "false_negative", "class_mismatch", "undecided", "error", "uncertified"})
+    for (const char* o : {"agree", "false_positive", "false_negative", "class_mismatch", "undecided", "error", "invalid", "uncertified"})
       BOOST_TEST(count(csv.at({"line_cylinder", family}), o) == (outcomes.count(o) ? outcomes.at(o) : 0), family << " " << o);
   BOOST_TEST(csv.size() == study_counts.size() + 1);  // and the query's "all" row
 }
@@ -354,4 +355,76 @@ BOOST_AUTO_TEST_CASE(plugin_crash_keeps_earlier_answers) {
   const Run spaced = s.run(kCertcyl + " judge --plugin " CERTCYL_PLUGIN_CRASH " --cases spaced.jsonl");
   BOOST_TEST(spaced.err.find("plugin crashed on line 6 (signal 11") != std::string::npos, spaced.err);
   BOOST_TEST(spaced.err.find("case 'line_cylinder/rim/4'") != std::string::npos, spaced.err);
+}
+
+BOOST_AUTO_TEST_CASE(shards_concatenated_judge_as_one_run) {
+  // Two shards of one cases file: each holds the cases whose index is its own modulo 2, is
+  // renamed into place when finished, and their answers.jsonl together, judged as an answers
+  // file, give the unsharded run's families.csv.
+  Scratch s;
+  BOOST_TEST_REQUIRE(s.run(kCertcyl + " cases --query line_cylinder --size tiny > cases.jsonl").status == 0);
+  const auto cases = lines_of(slurp(s / "cases.jsonl"));
+  BOOST_TEST_REQUIRE(cases.size() > 4);
+  const std::string method = " --exec '" + kCertcyl + " query --method shene --nt double' --label shene";
+  BOOST_TEST_REQUIRE(s.run(kCertcyl + " judge --cases cases.jsonl" + method + " --name whole").status == 0);
+  for (const char* k : {"0", "1"}) {
+    const Run r = s.run(kCertcyl + " judge --cases cases.jsonl" + method + " --name sharded --shard " + k + "/2");
+    BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  }
+  std::string merged;
+  for (int k = 0; k < 2; ++k) {
+    const fs::path shard = s.dir / "results/sharded" / ("shard-" + std::to_string(k) + "-of-2");
+    BOOST_TEST(!fs::exists(fs::path(shard).concat(".partial")));
+    const auto answers = lines_of(slurp(shard / "answers.jsonl"));
+    BOOST_TEST(answers.size() == (cases.size() + 1 - static_cast<std::size_t>(k)) / 2);
+    for (std::size_t i = 0; i < answers.size(); ++i)
+      BOOST_TEST(json::parse(answers[i])["id"] == json::parse(cases[2 * i + static_cast<std::size_t>(k)])["id"]);
+    merged += slurp(shard / "answers.jsonl");
+  }
+  std::ofstream(s / "merged.jsonl") << merged;
+  const Run m = s.run(kCertcyl + " judge --cases cases.jsonl --answers merged.jsonl --label shene --name merged");
+  BOOST_TEST_REQUIRE(m.status == 0, m.err);
+  BOOST_TEST(slurp(s.dir / "results/merged/families.csv") == slurp(s.dir / "results/whole/families.csv"));
+  BOOST_TEST(slurp(s.dir / "results/merged/summary.txt").rfind("certcyl judge: shene, ", 0) == 0);
+  // A shard index outside the count is refused.
+  const Run bad = s.run(kCertcyl + " judge --cases cases.jsonl" + method + " --shard 2/2");
+  BOOST_TEST(bad.status == 1);
+  BOOST_TEST(!bad.err.empty());
+}
+
+BOOST_AUTO_TEST_CASE(a_shard_whose_method_fails_stays_partial) {
+  Scratch s;
+  BOOST_TEST_REQUIRE(s.run(kCertcyl + " cases --query line_cylinder --size tiny > cases.jsonl").status == 0);
+  const Run r = s.run(kCertcyl + " judge --cases cases.jsonl --exec '" + kCertcyl +
+                      " query --method robust_double | head -n 3' --name sharded --shard 1/2");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("the shard is not finished") != std::string::npos, r.err);
+  BOOST_TEST(fs::exists(s.dir / "results/sharded/shard-1-of-2.partial/answers.jsonl"));
+  BOOST_TEST(lines_of(slurp(s.dir / "results/sharded/shard-1-of-2.partial/answers.jsonl")).size() == 3u);
+  BOOST_TEST(!fs::exists(s.dir / "results/sharded/shard-1-of-2"));
+}
+
+BOOST_AUTO_TEST_CASE(a_program_that_stops_answering_is_killed_after_the_timeout) {
+  Scratch s;
+  BOOST_TEST_REQUIRE(s.run(kCertcyl + " cases --query line_cylinder --size tiny > cases.jsonl").status == 0);
+  // Answers two lines, then holds its output open without answering.
+  const std::string program = kCertcyl + " query --method robust_double --line-buffered | { head -n 2; sleep 60; }";
+  const auto start = std::chrono::steady_clock::now();
+  const Run r = s.run(kCertcyl + " judge --cases cases.jsonl --timeout 1 --exec '" + program + "'");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("gave no answer to line 3") != std::string::npos, r.err);
+  BOOST_TEST(r.err.find("within 1 s (--timeout) and was killed, after answering 2 of") != std::string::npos, r.err);
+  BOOST_TEST(seconds < 30);  // not the program's 60 s: its process group was killed
+  BOOST_TEST(lines_of(slurp(s.dir / "results/judge/answers.jsonl")).size() == 2u);
+}
+
+BOOST_AUTO_TEST_CASE(query_answers_a_coprocess_line_by_line) {
+  // A line written while the input stays open is answered before the next one comes.
+  Scratch s;
+  const std::string line =
+      R"({"id":1,"query":"point_cylinder","point":[0,0,1],"cylinder":{"p0":[0,0,0],"p1":[0,0,2],"radius":1}})";
+  const Run r = s.run("{ echo '" + line + "'; sleep 6; } | timeout 2 " + kCertcyl + " query --line-buffered --brief");
+  BOOST_TEST(r.status == 124);  // ended by timeout, the input still open
+  BOOST_TEST(r.out == "{\"id\":1,\"answer\":\"overlapping\"}\n");
 }

@@ -203,6 +203,60 @@ BOOST_AUTO_TEST_CASE(command_line_values_never_wrap) {
   BOOST_TEST(!fs::exists(root / "out"));
 }
 
+BOOST_AUTO_TEST_CASE(command_line_wins_over_the_file) {
+  const std::string file = R"({"size": "small", "seed": 7, "name": "from_file"})";
+  cli::StudyOptions o;
+  BOOST_TEST(config_error(file, o).empty());
+  // The file alone: its size, seed and name.
+  o.config_file = (root / "config.json").string();
+  o.out_root = (root / "out").string();
+  cli::configure_study(o, kMethods);
+  BOOST_TEST(o.size == "small");
+  BOOST_TEST(o.seed == 7u);
+  BOOST_TEST(o.name == "from_file");
+  BOOST_TEST(o.per_family == 12);
+  // The same keys given on the command line win, each on its own.
+  for (int given = 0; given < 3; ++given) {
+    cli::StudyOptions c;
+    c.config_file = (root / "config.json").string();
+    c.out_root = (root / "out").string();
+    c.size = "tiny", c.seed = 3, c.name = "from_command_line";
+    c.size_given = given == 0, c.seed_given = given == 1, c.name_given = given == 2;
+    cli::configure_study(c, kMethods);
+    BOOST_TEST(c.size == (given == 0 ? "tiny" : "small"));
+    BOOST_TEST(c.per_family == (given == 0 ? 3 : 12));
+    BOOST_TEST(c.seed == (given == 1 ? 3u : 7u));
+    BOOST_TEST(c.name == (given == 2 ? "from_command_line" : "from_file"));
+  }
+  // A key the command line overrides is still checked.
+  cli::StudyOptions c;
+  c.seed_given = true;
+  BOOST_TEST(config_error(R"({"seed": -1})", c) == "--config: seed: expected an integer in [0, 18446744073709551615], got -1");
+  c.name_given = true;
+  BOOST_TEST(config_error(R"({"name": "../escape"})", c) ==
+             "--config: name: expected a plain folder name (not empty, no '/', not starting with '.'), got '../escape'");
+}
+
+BOOST_AUTO_TEST_CASE(command_line_wins_through_the_binary) {
+  // The options the command line gave are the ones machine.json records, and the folder is its name.
+  fs::create_directories(root);
+  std::ofstream(root / "named.json") << R"({"per_family": 1, "map_cells": 2, "hunt_evaluations": 1, "families": ["c_cap_cap"],
+      "methods": ["/double"], "size": "small", "seed": 7, "name": "from_file"})";
+  const std::string out = (root / "precedence").string();
+  const std::string common = "study --config '" + (root / "named.json").string() + "' --out '" + out + "' --no-plots --no-progress --threads 1";
+  BOOST_TEST_REQUIRE(run(common + " --size 2 --seed 5 --name from_command_line > /dev/null").status == 0);
+  BOOST_TEST(!fs::exists(out + "/from_file"));
+  std::string machine = text_of(out + "/from_command_line/machine.json");
+  BOOST_TEST(machine.find(R"("name": "from_command_line")") != std::string::npos, machine);
+  BOOST_TEST(machine.find(R"("size": "2")") != std::string::npos, machine);
+  BOOST_TEST(machine.find(R"("seed": 5,)") != std::string::npos, machine);
+  BOOST_TEST_REQUIRE(run(common + " > /dev/null").status == 0);
+  machine = text_of(out + "/from_file/machine.json");
+  BOOST_TEST(machine.find(R"("size": "small")") != std::string::npos, machine);
+  BOOST_TEST(machine.find(R"("seed": 7,)") != std::string::npos, machine);
+  fs::remove_all(out);
+}
+
 BOOST_AUTO_TEST_CASE(full_device) {
   fs::create_directories(root);
   std::ofstream(root / "small.json") << kSmall;

@@ -15,6 +15,9 @@
 //                    touching / overlapping
 //   undecided        the method declined (an interval type)
 //   error            the method threw (for instance a degenerate division it cannot handle)
+//   invalid          a value the method reports left the finite doubles (an overflow, a 0/0):
+//                    its answer came from comparisons with an infinity or a NaN, counted apart
+//                    as `certcyl query` answers "invalid"
 //   agree            otherwise
 #pragma once
 
@@ -36,6 +39,7 @@ struct MethodOutput {
   Answer answer = Answer::undecided;
   bool intersecting = false;  // a boolean method's positive answer (answer is then unused)
   bool error = false;
+  bool invalid = false;       // a reported value is not finite (answer keeps what was computed)
   double t_in = std::numeric_limits<double>::quiet_NaN();  // line queries: computed entry parameter
 };
 
@@ -96,7 +100,7 @@ struct Method {
 
 using Registry = std::vector<Method>;
 
-enum class Outcome { agree, false_positive, false_negative, class_mismatch, undecided, error };
+enum class Outcome { agree, false_positive, false_negative, class_mismatch, undecided, error, invalid };
 
 inline constexpr std::string_view to_string(Outcome o) {
   switch (o) {
@@ -106,6 +110,7 @@ inline constexpr std::string_view to_string(Outcome o) {
     case Outcome::class_mismatch: return "class_mismatch";
     case Outcome::undecided: return "undecided";
     case Outcome::error: return "error";
+    case Outcome::invalid: return "invalid";
   }
   return "?";
 }
@@ -114,6 +119,7 @@ inline std::ostream& operator<<(std::ostream& os, Outcome o) { return os << to_s
 
 inline std::string answer_label(const MethodOutput& m) {
   if (m.error) return "error";
+  if (m.invalid) return "invalid";
   if (m.intersecting) return "intersecting";
   return std::string(to_string(m.answer));
 }
@@ -121,6 +127,7 @@ inline std::string answer_label(const MethodOutput& m) {
 // The judgement of a method's output against a certified (decided) answer.
 inline Outcome judge(const MethodOutput& m, Answer certified) {
   if (m.error) return Outcome::error;
+  if (m.invalid) return Outcome::invalid;
   if (!m.intersecting && m.answer == Answer::undecided) return Outcome::undecided;
   const bool says_meet = m.intersecting || intersects(m.answer);
   const bool meets = intersects(certified);

@@ -1,0 +1,170 @@
+// certcyl._judge: a Python implementation of one study query judged in process as `certcyl
+// judge` judges a co-process or a plugin (judge_internal.hpp): the cases of `certcyl cases`
+// (make_cases), the function's answer to each read as the study reads an answer (answered),
+// and the results folder and summary table (write_results).
+//
+// The function gets a case's operands as numpy arrays in the module's layout (line, ray:
+// origin, direction, cylinder; segment: p0, p1, cylinder; elliptic: origin, direction, the
+// 12 numbers of the elliptic cylinder; triangle: a 3 x 3 triangle, cylinder; cylinder pair: a,
+// b; cylinders as p0, p1, radius): one case per call, or, vectorised, every case in one call
+// with N rows per operand, returning N answers. An answer is an answer code (SEPARATED ...
+// UNDECIDED of the module; a negative code is an error of the method), a bool (True: the sets
+// meet, False: separated) or a word (`separated`, ..., `intersecting`, `undecided`, `invalid`,
+// `error`). An exception raised by the function ends the run as a crashed plugin ends it: the
+// cases answered before it are written, and the exception is raised again naming the case.
+#include <exception>
+#include <filesystem>
+#include <sstream>
+#include <vector>
+
+#include <pybind11/stl.h>
+
+#include "arrays.hpp"
+#include "batch.hpp"
+#include "judge_internal.hpp"
+
+namespace certcyl::python {
+namespace {
+
+// The widths of a query's operands in the study's flat layout (study/instance.hpp).
+std::vector<std::size_t> operand_widths(study::Query q) {
+  switch (q) {
+    case study::Query::line_cylinder:
+    case study::Query::ray_cylinder:
+    case study::Query::segment_cylinder: return {3, 3, 7};
+    case study::Query::line_elliptic_cylinder: return {3, 3, 12};
+    case study::Query::triangle_cylinder: return {9, 7};
+    case study::Query::cylinder_cylinder: return {7, 7};
+  }
+  return {};
+}
+
+// The operands of cases [begin, end) as arrays: N x width (or width alone for a single case;
+// triangles N x 3 x 3 or 3 x 3).
+py::tuple operands(const std::vector<cli::Case>& cases, std::size_t begin, std::size_t end, bool vectorized) {
+  const std::vector<std::size_t> widths = operand_widths(cases[begin].query);
+  const bool triangle_first = cases[begin].query == study::Query::triangle_cylinder;
+  py::tuple args(widths.size());
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < widths.size(); ++k) {
+    const auto n = static_cast<py::ssize_t>(end - begin), w = static_cast<py::ssize_t>(widths[k]);
+    std::vector<py::ssize_t> shape;
+    if (vectorized) shape.push_back(n);
+    if (k == 0 && triangle_first) {
+      shape.insert(shape.end(), {3, 3});
+    } else {
+      shape.push_back(w);
+    }
+    py::array_t<double> a(shape);
+    double* p = a.mutable_data();
+    for (std::size_t i = begin; i < end; ++i)
+      for (std::size_t j = 0; j < widths[k]; ++j) *p++ = cases[i].x[at + j];
+    args[k] = std::move(a);
+    at += widths[k];
+  }
+  return args;
+}
+
+// The answer word of one value the function returned; throws ValueError for anything else.
+std::string answer_word(py::handle value, const cli::Case& c) {
+  const auto fail = [&](const std::string& what) {
+    throw py::value_error("judge: case " + c.id + ": " + what + " (expected an answer code, a bool or an answer word)");
+  };
+  if (py::isinstance<py::bool_>(value) || py::isinstance(value, py::module_::import("numpy").attr("bool_")))
+    return value.cast<bool>() ? "intersecting" : "separated";
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::hasattr(value, "__index__")) {
+    const long code = py::int_(py::reinterpret_borrow<py::object>(value)).cast<long>();
+    if (code < 0) return "error";
+    switch (code) {
+      case kSeparated: return "separated";
+      case kTouching: return "touching";
+      case kOverlapping: return "overlapping";
+      case kIntersecting: return "intersecting";
+      case kUndecided: return "undecided";
+      default: fail("answer code " + std::to_string(code));
+    }
+  }
+  fail("the function returned " + py::repr(value).cast<std::string>());
+  return {};
+}
+
+cli::judging::Answered read_answer(py::handle value, const cli::Case& c) {
+  const std::string word = answer_word(value, c);
+  try {
+    return cli::judging::answered(word);
+  } catch (const std::invalid_argument&) {
+    throw py::value_error("judge: case " + c.id + ": unknown answer '" + word + "'");
+  }
+}
+
+py::tuple judge(py::function function, const std::string& query, const std::string& size, std::uint64_t seed,
+                const std::vector<std::string>& families, bool vectorized, const std::string& method, const std::string& out_root,
+                const std::string& name, unsigned threads) {
+  cli::CaseSpec spec;
+  spec.query = query;
+  spec.size = size;
+  spec.seed = seed;
+  spec.families = families;
+  spec.threads = threads;
+  std::vector<cli::Case> cases;
+  {
+    const py::gil_scoped_release release;
+    cases = cli::make_cases(spec);
+  }
+  if (cases.empty()) throw py::value_error("judge: no cases for query " + query);
+
+  const std::filesystem::path dir = std::filesystem::path(out_root) / name;
+  cli::judging::Answers answers;
+  answers.answers.resize(cases.size());
+  std::exception_ptr error;
+  // The function's exception gets a note naming the case; the run's failure says the same.
+  const auto failed = [&](const std::string& what) {
+    answers.failure = what;
+    error = std::current_exception();
+    try {
+      throw;
+    } catch (py::error_already_set& e) {
+      if (py::hasattr(e.value(), "add_note")) e.value().attr("add_note")("certcyl.judge: " + what + "; results so far in " + dir.string());
+    } catch (...) {
+    }
+  };
+  if (vectorized) {
+    try {
+      const py::object result = function(*operands(cases, 0, cases.size(), true));
+      const py::list values = py::list(py::module_::import("numpy").attr("asarray")(result, "object").attr("tolist")());
+      if (values.size() != cases.size())
+        throw py::value_error("judge: the function returned " + std::to_string(values.size()) + " answers for " +
+                              std::to_string(cases.size()) + " cases");
+      for (std::size_t i = 0; i < cases.size(); ++i) answers.answers[i] = read_answer(values[i], cases[i]);
+    } catch (const std::exception& e) {
+      answers.answers.assign(cases.size(), std::nullopt);
+      failed(std::string("the function failed: ") + e.what());
+    }
+  } else {
+    for (std::size_t i = 0; i < cases.size() && !error; ++i) {
+      try {
+        answers.answers[i] = read_answer(function(*operands(cases, i, i + 1, false)), cases[i]);
+      } catch (const std::exception& e) {
+        failed("the function failed on case " + cases[i].id + " (line " + std::to_string(cases[i].line) + "): " + e.what());
+      }
+    }
+  }
+  std::ostringstream summary;
+  {
+    const py::gil_scoped_release release;
+    cli::judging::write_results(dir, method, cases, answers, summary);
+  }
+  if (error) std::rethrow_exception(error);
+  return py::make_tuple(summary.str(), dir.string());
+}
+
+}  // namespace
+
+void bind_judge(py::module_& m) {
+  m.def("_judge", &judge, py::arg("function"), py::arg("query"), py::arg("size"), py::arg("seed"), py::arg("families"),
+        py::arg("vectorized"), py::arg("method"), py::arg("out"), py::arg("name"), py::arg("threads"),
+        "The in-process judge behind certcyl.judge: returns (summary table, results folder).");
+}
+
+}  // namespace certcyl::python
