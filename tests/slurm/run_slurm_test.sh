@@ -12,6 +12,12 @@
 #    a node of one CPU) each and the merge job: the summed counts must equal an unsharded run's,
 #    line for line. Then the same submitted held and task 2 cancelled before it runs: the merge
 #    job (afterany) must fail, naming the missing shard.
+# 3. A judgement (`certcyl query --method shene --nt double` as --exec, line_cylinder at size
+#    tiny): the cases job writes the cases certcyl cases writes, then 3 array tasks, task 1 failing
+#    (killed as it starts): the merge job (afterok) must not run and judge-merge.sh must refuse,
+#    naming shard 1. Re-submitting index 1 alone (no new cases job: the file exists) completes the
+#    merge, whose families.csv, counterexamples.jsonl and answers.jsonl must equal an unsharded
+#    judgement's byte for byte.
 # Every wait has a time limit; exit 77 (skipped) when not root or Slurm is not installed.
 set -euo pipefail
 [ $# -eq 4 ] || { echo "usage: run_slurm_test.sh CERTCYL CROSSCHECK SOURCE_DIR WORK_DIR" >&2; exit 2; }
@@ -71,12 +77,15 @@ wait_job() {
   scontrol show job "$id" >&2 || true
   fail "job $id not finished within $limit s (states: $states)"
 }
-# Runs submit.sh with the given settings; sets array_id and merge_id.
+# Runs submit.sh with the given settings; sets array_id, merge_id and cases_id (a judge's cases
+# job, when one was submitted; else empty).
 submit() {
   local ids
   ids=$(env "$@" timeout 60 bash "$submit" "$kind" "${sbatch_options[@]}") || fail "submit.sh $kind failed"
-  read -r array_id merge_id <<< "$ids"
-  [[ "$array_id" =~ ^[0-9]+$ && "$merge_id" =~ ^[0-9]+$ ]] || fail "submit.sh printed '$ids', not two job ids"
+  cases_id=""
+  read -r array_id merge_id cases_id <<< "$ids"
+  [[ "$array_id" =~ ^[0-9]+$ && "$merge_id" =~ ^[0-9]+$ && "$cases_id" =~ ^[0-9]*$ ]] ||
+    fail "submit.sh printed '$ids', not two job ids (and a cases job's)"
 }
 
 # --- 1. The study: a lost shard, its re-run, the merge against an unsharded run.
@@ -166,4 +175,53 @@ merge_state=$(wait_job "$merge_id" 120)
 echo "cross-check merge job $merge_id after a cancelled task: $merge_state"
 [ "$merge_state" = FAILED ] || fail "the cross-check merge job did not fail ($merge_state) with shard 2 missing"
 grep -q "missing shard(s) 2 of 3" "$results/crosscheck-lost/summary.txt" || fail "the cross-check merge did not name shard 2"
+# --- 3. The judge: a cases job, the array of 3 shards after it, the merge; a lost shard re-run.
+# certcyl, but while the marker exists the task of shard 1 of 3 kills itself as it starts.
+cat > "$wrapper" << EOF
+#!/usr/bin/env bash
+[ -e '$lost' ] && [[ " \$* " == *" --shard 1/3 "* ]] && kill -KILL \$\$
+exec '$certcyl' "\$@"
+EOF
+timeout "$(remaining)" "$certcyl" cases --query line_cylinder --size tiny > "$work/judge-cases.jsonl" || fail "certcyl cases failed"
+method="$certcyl query --method shene --nt double"
+timeout "$(remaining)" "$certcyl" judge --cases "$work/judge-cases.jsonl" --exec "$method" --label shene \
+  --out "$results" --name judge-unsharded > /dev/null || fail "the unsharded judgement failed"
+kind=judge
+judge_settings=(CERTCYL_BIN="$wrapper" CERTCYL_OUT="$results" CERTCYL_NAME=judge CERTCYL_QUERY=line_cylinder
+  CERTCYL_SIZE=tiny CERTCYL_SHARDS=3 CERTCYL_EXEC="$method" CERTCYL_LABEL=shene CERTCYL_TIMEOUT=60)
+sbatch_options=()
+touch "$lost"
+submit "${judge_settings[@]}"
+[ -n "$cases_id" ] || fail "no cases job submitted although $results/judge/cases.jsonl did not exist"
+[ "$(wait_job "$cases_id" 120)" = COMPLETED ] || fail "the cases job $cases_id did not complete"
+cmp -s "$work/judge-cases.jsonl" "$results/judge/cases.jsonl" || fail "the cases job's cases differ from certcyl cases'"
+states=$(wait_job "$array_id" 300)
+merge_state=$(wait_job "$merge_id" 120)
+echo "judge array job $array_id: $states; merge job $merge_id: $merge_state"
+[ "$(task_state 1)" = FAILED ] || fail "judge task 1 is $(task_state 1), not FAILED"
+[ "$(task_state 0) $(task_state 2)" = "COMPLETED COMPLETED" ] || fail "judge tasks 0 and 2 did not complete ($states)"
+[ "$merge_state" = CANCELLED ] || fail "the judge's merge job ran ($merge_state) although task 1 failed"
+for k in 0 2; do
+  [ -f "$results/judge/shard-$k-of-3/answers.jsonl" ] || fail "shard $k of 3 is not in place"
+done
+if refused=$(CERTCYL_BIN="$certcyl" timeout 60 bash "$source_dir/experiments/slurm/judge-merge.sh" "$results/judge" 3 2>&1); then
+  fail "judge-merge.sh merged without shard 1: $refused"
+fi
+[[ "$refused" == *"missing shard(s) 1 of 3"* ]] || fail "judge-merge.sh did not name shard 1: $refused"
+echo "judge-merge.sh refused: $refused"
+rm "$lost"
+submit "${judge_settings[@]}" CERTCYL_TASKS=1
+[ -z "$cases_id" ] || fail "a cases job was submitted again although the cases file exists"
+states=$(wait_job "$array_id" 300)
+merge_state=$(wait_job "$merge_id" 120)
+echo "re-run of judge shard 1: array job $array_id $states, merge job $merge_id $merge_state"
+[ "$states $merge_state" = "COMPLETED COMPLETED" ] || fail "the re-run of judge shard 1 or its merge did not complete"
+# The merged judgement is the unsharded one, file for file (summary.txt names its own folder).
+for f in families.csv counterexamples.jsonl answers.jsonl; do
+  cmp "$results/judge-unsharded/$f" "$results/judge/$f" || fail "the merged judgement's $f differs from the unsharded run's"
+done
+[ "$(head -n 1 "$results/judge/summary.txt")" = "$(head -n 1 "$results/judge-unsharded/summary.txt")" ] ||
+  fail "the merged summary's first line differs from the unsharded run's"
+[ "$(wc -l < "$results/judge/answers.jsonl")" -eq "$(wc -l < "$work/judge-cases.jsonl")" ] ||
+  fail "the merged answers.jsonl does not answer every case"
 echo "slurm test: passed"
