@@ -1390,7 +1390,9 @@ class CylinderCylinderSolver {
     if (limit == 0 && !options_.prove_touching) limit = heuristic_limit;
     const CylinderPair<Rational>& e = exact();
     const bool ellipsoid_on = !(e.T.x == 0 && e.T.y == 0 && e.T.z == 0);  // T = 0 was decided by the midpoints stage
-    for (int j = 0; j < 62; ++j) {
+    // j stops after 128 2^48 = 2^55 bits (4 PiB a number): no machine gets there, and the
+    // shifts below stay within a long.
+    for (int j = 0; j < 49; ++j) {
       const long ph = first << j, pe = 128L << j;
       const bool heuristic = ph <= heuristic_limit, complete = ellipsoid_on && (limit == 0 || pe <= limit);
       if (!heuristic && !complete) break;
