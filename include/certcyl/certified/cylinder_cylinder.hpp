@@ -339,16 +339,6 @@ inline double phi_lower_from_sigma(double sigma_upper) {
   return kStaticRoundDown * (1 / sigma_upper);
 }
 
-// x 2^j for a Rational, exactly.
-// The result is a new number: Gmpq copies share their representation (CGAL's Handle_for), and
-// writing through mpq() of a copy would change the caller's value too.
-inline Rational times_two_power(const Rational& x, long j) {
-  Rational y;
-  if (j >= 0) mpq_mul_2exp(y.mpq(), x.mpq(), static_cast<mp_bitcnt_t>(j));
-  if (j < 0) mpq_div_2exp(y.mpq(), x.mpq(), static_cast<mp_bitcnt_t>(-j));
-  return y;
-}
-
 // The span in binades of an exact pair (CylinderCylinderOptions::max_precision): from the
 // smallest nonzero magnitude among the radii and the coordinates of A0, A1 and T (the sizes the
 // geometry works at) to the largest coordinate or radius (what a rounded Gmpfr input loses its

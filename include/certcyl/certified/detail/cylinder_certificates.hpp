@@ -162,6 +162,29 @@ auto interval_attempt(F&& f) -> std::optional<decltype(f())> {
 
 // ---- conversions of exact input --------------------------------------------------------------
 
+// x 2^j for a Rational, exactly.
+// The result is a new number: Gmpq copies share their representation (CGAL's Handle_for), and
+// writing through mpq() of a copy would change the caller's value too.
+inline Rational times_two_power(const Rational& x, long j) {
+  Rational y;
+  if (j >= 0) mpq_mul_2exp(y.mpq(), x.mpq(), static_cast<mp_bitcnt_t>(j));
+  if (j < 0) mpq_div_2exp(y.mpq(), x.mpq(), static_cast<mp_bitcnt_t>(-j));
+  return y;
+}
+
+// The least common multiple of the denominators of a pair's 14 input numbers; nullopt once it
+// exceeds max_bits bits.
+inline std::optional<CGAL::Gmpz> denominator_lcm(const Cylinder<Rational>& c0, const Cylinder<Rational>& c1,
+                                                 std::size_t max_bits = std::numeric_limits<std::size_t>::max()) {
+  CGAL::Gmpz L = 1;
+  for (const Cylinder<Rational>* c : {&c0, &c1})
+    for (const Rational* q : {&c->p0.x, &c->p0.y, &c->p0.z, &c->p1.x, &c->p1.y, &c->p1.z, &c->radius}) {
+      mpz_lcm(L.mpz(), L.mpz(), mpq_denref(q->mpq()));
+      if (mpz_sizeinbase(L.mpz(), 2) > max_bits) return std::nullopt;
+    }
+  return L;
+}
+
 // True (and d set) when q is exactly a normal binary64 value (or zero) with a numerator below
 // 2^53 and a denominator 2^k: the common case of binary64 input, read from the limbs without
 // allocation or division. (Integers of 54 bits or more and subnormals are left out.)

@@ -118,14 +118,6 @@ inline CGAL::Gmpz shifted(const CGAL::Gmpz& x, long k) {
   return y;
 }
 
-// x 2^k for a rational, exactly.
-inline Rational times_two_to(const Rational& x, long k) {
-  Rational y;
-  if (k >= 0) mpq_mul_2exp(y.mpq(), x.mpq(), static_cast<mp_bitcnt_t>(k));
-  if (k < 0) mpq_div_2exp(y.mpq(), x.mpq(), static_cast<mp_bitcnt_t>(-k));
-  return y;
-}
-
 // One run of the ellipsoid method in dimension n (2 or 3) from the unit ball.
 template <int n>
 class EllipsoidRun {
@@ -263,11 +255,7 @@ struct IntegerPair {
   CGAL::Gmpz L;
 
   explicit IntegerPair(const CylinderPair<Rational>& e) {
-    L = 1;
-    for (const Cylinder<Rational>* c : {&e.c0, &e.c1})
-      for (const Rational* q : {&c->p0.x, &c->p0.y, &c->p0.z, &c->p1.x, &c->p1.y, &c->p1.z, &c->radius})
-        mpz_lcm(L.mpz(), L.mpz(), mpq_denref(q->mpq()));
-    L = L * 2;
+    L = *denominator_lcm(e.c0, e.c1) * 2;
     const auto to_z = [this](const Rational& q) { return nt::from_rational<CGAL::Gmpz>(q * Rational(L)); };
     d = CylinderPair<CGAL::Gmpz>::make(e.c0.map(to_z), e.c1.map(to_z));
     const auto half = [](const CGAL::Gmpz& x) {
@@ -332,7 +320,7 @@ class PointProblem {
   // The coordinates u of an input-frame point X (X L = m + 2^k u in the integer frame).
   std::array<Rational, 3> coordinates(const Point3<Rational>& X) const {
     const Rational L(z_.L);
-    const Rational scale = times_two_to(Rational(1), -k_);
+    const Rational scale = times_two_power(Rational(1), -k_);
     return {(X.x * L - Rational(m_.x)) * scale, (X.y * L - Rational(m_.y)) * scale, (X.z * L - Rational(m_.z)) * scale};
   }
 
@@ -422,7 +410,7 @@ class DirectionProblem {
     if (dd == 0) return std::nullopt;
     const Vec3<Rational> v = D / dd - delta / Rational(G_);  // 2^k (u1 E1 + u2 E2)
     const Vec3<Rational> E1 = q(E_[0]), E2 = q(E_[1]);
-    const Rational scale = times_two_to(Rational(1), -k_);
+    const Rational scale = times_two_power(Rational(1), -k_);
     return std::array<Rational, 2>{dot(v, E1) / dot(E1, E1) * scale, dot(v, E2) / dot(E2, E2) * scale};
   }
 
@@ -497,8 +485,11 @@ class DirectionProblem {
         const CGAL::Gmpz lhs = n2 * AA;
         const bool ok = 2 * we >= 0 ? lhs * shifted(CGAL::Gmpz(1), 2 * we) <= CGAL::Gmpz(1) : lhs <= shifted(CGAL::Gmpz(1), -2 * we);
         if (ok) break;
+        // W (1 - 2^-(bits - 4)), truncated: |W| only shrinks.
         for (CGAL::Gmpz& Wk : W) {
-          Wk = Wk - shifted(Wk, 0) / shifted(CGAL::Gmpz(1), std::max(1L, bits - 4));
+          CGAL::Gmpz part;
+          mpz_tdiv_q_2exp(part.mpz(), Wk.mpz(), static_cast<mp_bitcnt_t>(std::max(1L, bits - 4)));
+          Wk = Wk - part;
         }
       }
       const Vec3<CGAL::Gmpz> Wv{W[0], W[1], W[2]};

@@ -71,12 +71,9 @@ struct RingFrame {
 
   // Rational input: L the lcm of the denominators; nullopt when L is too large.
   static std::optional<RingFrame> from_rational(const Cylinder<Rational>& c0, const Cylinder<Rational>& c1) {
-    CGAL::Gmpz L = 1;
-    for (const Cylinder<Rational>* c : {&c0, &c1})
-      for (const Rational* q : {&c->p0.x, &c->p0.y, &c->p0.z, &c->p1.x, &c->p1.y, &c->p1.z, &c->radius}) {
-        mpz_lcm(L.mpz(), L.mpz(), mpq_denref(q->mpq()));
-        if (mpz_sizeinbase(L.mpz(), 2) > kRingFrameMaxBits) return std::nullopt;
-      }
+    const std::optional<CGAL::Gmpz> lcm = denominator_lcm(c0, c1, kRingFrameMaxBits);
+    if (!lcm) return std::nullopt;
+    const CGAL::Gmpz& L = *lcm;
     CGAL::Gmpz n;  // one buffer for every coordinate
     const auto to_m = [&L, &n](const Rational& q) {
       // q L = numerator (L / denominator), an integer.
