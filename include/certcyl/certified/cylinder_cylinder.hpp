@@ -62,7 +62,12 @@
 //                    prove_touching when there is no ring frame).
 //   gmpfr            exact candidates first (the midpoints and points of an end disc of one
 //                    cylinder whose end lies in the other as witnesses, T and its parts
-//                    orthogonal to the axes as directions, all in Gmpq), then the optimiser at
+//                    orthogonal to the axes as directions, all in Gmpq), then the corner
+//                    candidates of detail/cylinder_corner_plane.hpp (the best direction of one
+//                    cylinder's rim wedge in the plane through its axis and the other, and the
+//                    other's deepest point in it, on quantities reduced exactly to the smaller
+//                    cylinder's scale: they decide a huge against a tiny cylinder without
+//                    precision to match their span), then the optimiser at
 //                    doubling precisions up to options.max_precision (by default set from the
 //                    input's span in bits); its direction
 //                    and point, converted exactly to rationals, are checked in Gmpq, and its
@@ -104,6 +109,7 @@
 #include "certcyl/answer.hpp"
 #include "certcyl/certified/detail/cylinder_active_set.hpp"
 #include "certcyl/certified/detail/cylinder_certificates.hpp"
+#include "certcyl/certified/detail/cylinder_corner_plane.hpp"
 #include "certcyl/certified/detail/cylinder_ellipsoid.hpp"
 #include "certcyl/certified/detail/cylinder_optimiser.hpp"
 #include "certcyl/certified/detail/cylinder_quick_filter.hpp"
@@ -1229,6 +1235,53 @@ class CylinderCylinderSolver {
     return end_disc_witness(0) || end_disc_witness(1);
   }
 
+  // Corner candidates (detail/cylinder_corner_plane.hpp), for each cylinder i against the other,
+  // j, the larger first: in the plane of i's axis through m_j, the best direction of i's rim
+  // wedge (whose support on i is exact) and, when none separates, j's deepest point in the
+  // wedge; then twice more in the plane through j's support point there (near the contact, where
+  // the plane's only error, the curvature of i's rim over j's distance from the plane, is
+  // smallest). Computed at 192 bits on quantities reduced exactly to j's scale, they decide
+  // pairs of a huge and a tiny cylinder (2^900 against 2^-900) from about 2^-90 of the small
+  // one's size off touching, whose separating directions form a cone far too narrow for the
+  // rounded optimiser below thousands of bits. Each candidate is checked exactly.
+  bool corner_candidates() {
+    constexpr long precision = 192;
+    constexpr int passes = 3;
+    const CylinderPair<Rational>& e = exact();
+    const int larger = e.AA0 + 4 * e.c0.radius * e.c0.radius >= e.AA1 + 4 * e.c1.radius * e.c1.radius ? 0 : 1;
+    for (const int i : {larger, 1 - larger}) {
+      const Cylinder<Rational>& ci = i == 0 ? e.c0 : e.c1;
+      const Cylinder<Rational>& cj = i == 0 ? e.c1 : e.c0;
+      const Point3<Rational> mj = cj.p0 + cj.axis() / Rational(2);
+      Point3<Rational> y = mj;
+      for (int pass = 0; pass < passes; ++pass) {
+        std::optional<Vec3<Rational>> D;
+        std::optional<Point3<Rational>> X;
+        Point3<Rational> next;
+        {
+          GmpfrPrecision scope(precision);
+          const CornerPlane plane = CornerPlane::make(ci, cj, y);
+          const CGAL::Gmpfr t = plane.best(160);
+          const CGAL::Gmpfr g = plane.gain(t);
+          const auto exact_value = [](const CGAL::Gmpfr& x) { return to_rational(x); };
+          if (g > 0) {
+            D = plane.direction(t);
+          } else if (g < 0) {
+            CGAL::Gmpfr spread = nt::constant<CGAL::Gmpfr>(1);
+            mpfr_mul_2si(spread.fr(), spread.fr(), -96, MPFR_RNDN);
+            if (const std::optional<Vec3<Rational>> z = plane.witness_offset(t, spread, precision)) X = mj + *z;
+          }
+          next = mj + plane.support_offset(t).map(exact_value);
+        }
+        if (D && exact_separates(*D)) return true;
+        if (X && exact_overlaps(*X)) return true;
+        if (next == y) break;
+        y = next;
+      }
+    }
+    return false;
+  }
+
   // Cylinder j of the exact pair and the other one, i, with their axes and squared lengths.
   struct Roles {
     const Cylinder<Rational>& cj;
@@ -1371,7 +1424,7 @@ class CylinderCylinderSolver {
   bool arbitrary_precision() {
     begin(CylinderStage::gmpfr);
     if (options_.max_precision < 0) return pass();
-    if (exact_candidates()) return true;
+    if (exact_candidates() || corner_candidates()) return true;
     const long span = input_span_bits();
     const long heuristic_limit = options_.max_precision > 0 ? options_.max_precision : 4 * span + 1024;
     long first = 128;

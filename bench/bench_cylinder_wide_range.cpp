@@ -1,0 +1,119 @@
+// The certified cylinder-pair query on pairs spanning many binades: the wide-range pairs of
+// tests/test_cylinder_wide_range_cases.hpp (operands scaled independently by powers of two from
+// 2^-1040 to 2^1000, subnormal radii, needles stretched 2^1000 along their axis; every contact
+// type; exactly touching and moved 2^-2, 2^-20, 2^-45, 2^-80 of the smaller scale either side
+// along the contact normal).
+//
+// One family per base configuration and pair of scales: its binary64 pairs (BM_wide/...) or its
+// rational pairs (BM_wide_rational/...: turned by a rational rotation, translated by 2^900 + 1/3
+// and divided by 10^500 + 1), each query in both orders. Per family: the time of one call on each
+// pair (one call: the slowest pairs took seconds before the corner candidates), as mean, median
+// and max, the slowest pair, the answers and the stages that decided. The exit status is 1 when
+// an answer contradicts the construction or is undecided.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "../tests/test_cylinder_wide_range_cases.hpp"
+#include "certcyl/certified/cylinder_cylinder.hpp"
+
+namespace {
+
+using cctest::WideCase;
+
+int contradictions = 0;
+
+struct Family {
+  std::string name;
+  std::vector<const WideCase*> cases;
+};
+
+const std::vector<WideCase>& all_cases() {
+  static const std::vector<WideCase> cases = cctest::wide_range_cases();
+  return cases;
+}
+
+// The family of a case: its name without the move (" d=...") and the " turned" suffix.
+std::string family_name(const WideCase& c) { return c.name.substr(0, c.name.find(" d=")); }
+
+std::vector<Family> families(bool binary64) {
+  std::vector<Family> out;
+  std::map<std::string, std::size_t> index;
+  for (const WideCase& c : all_cases()) {
+    if (c.binary64 != binary64 || (!binary64 && c.name.find(" turned") == std::string::npos)) continue;
+    const std::string name = family_name(c);
+    const auto [it, inserted] = index.emplace(name, out.size());
+    if (inserted) out.push_back({name, {}});
+    out[it->second].cases.push_back(&c);
+  }
+  return out;
+}
+
+void run_family(benchmark::State& state, const Family& f) {
+  std::vector<double> t;
+  std::map<std::string, int> stages;
+  std::string slowest;
+  double slowest_time = -1;
+  for (auto _ : state) {
+    for (const WideCase* c : f.cases)
+      for (const bool swap : {false, true}) {
+        const cctest::Cylinder<cctest::Q>& a = swap ? c->b : c->a;
+        const cctest::Cylinder<cctest::Q>& b = swap ? c->a : c->b;
+        const auto start = std::chrono::steady_clock::now();
+        const certcyl::CylinderCylinderResult r = certcyl::certified_cylinder_cylinder(a, b);
+        const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+        t.push_back(us);
+        ++stages[std::string(certcyl::to_string(r.stage))];
+        const std::string label = c->name.substr(c->name.find(" d=") + 1) + (swap ? " swapped" : "");
+        if (us > slowest_time) {
+          slowest_time = us;
+          slowest = label;
+        }
+        if (r.answer != c->expected) {
+          ++contradictions;
+          std::fprintf(stderr, "bench_cylinder_wide_range: %s%s: answer %s\n", c->name.c_str(), swap ? " swapped" : "",
+                       std::string(certcyl::to_string(r.answer)).c_str());
+        }
+      }
+  }
+  std::sort(t.begin(), t.end());
+  double mean = 0;
+  for (double x : t) mean += x;
+  mean /= static_cast<double>(t.size());
+  state.counters["pairs"] = static_cast<double>(t.size());
+  state.counters["mean_us"] = mean;
+  state.counters["p50_us"] = t[t.size() / 2];
+  state.counters["max_us"] = t.back();
+  std::string label = "slowest " + slowest + ";";
+  for (const auto& [s, n] : stages) label += " " + s + ":" + std::to_string(n);
+  state.SetLabel(label);
+}
+
+const bool registered = [] {
+  for (const bool binary64 : {true, false}) {
+    static std::vector<Family> store[2];
+    store[binary64] = families(binary64);
+    for (const Family& f : store[binary64])
+      benchmark::RegisterBenchmark(((binary64 ? "BM_wide/" : "BM_wide_rational/") + f.name).c_str(),
+                                   [&f](benchmark::State& s) { run_family(s, f); })
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(1);
+  }
+  return true;
+}();
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  if (contradictions > 0) std::fprintf(stderr, "bench_cylinder_wide_range: %d answers contradict the construction or are undecided\n", contradictions);
+  return contradictions > 0 ? 1 : 0;
+}
