@@ -1238,43 +1238,50 @@ class CylinderCylinderSolver {
   // Corner candidates (detail/cylinder_corner_plane.hpp), for each cylinder i against the other,
   // j, the larger first: in the plane of i's axis through m_j, the best direction of i's rim
   // wedge (whose support on i is exact) and, when none separates, j's deepest point in the
-  // wedge; then twice more in the plane through j's support point there (near the contact, where
-  // the plane's only error, the curvature of i's rim over j's distance from the plane, is
-  // smallest). Computed at 192 bits on quantities reduced exactly to j's scale, they decide
-  // pairs of a huge and a tiny cylinder (2^900 against 2^-900) from about 2^-90 of the small
-  // one's size off touching, whose separating directions form a cone far too narrow for the
-  // rounded optimiser below thousands of bits. Each candidate is checked exactly.
+  // wedge; then again in the plane through j's support point there (near the contact, where the
+  // plane's only error, the curvature of i's rim over j's distance from the plane, is smallest).
+  // The quantities are reduced exactly to the contact's scale; the precision starts at 192 bits
+  // and rises to what the gain found needs against its terms (at most 1,024 bits; the search
+  // takes 1.5 golden-section steps a bit). They decide pairs of a huge and a tiny cylinder
+  // (2^900 against 2^-900) and needles against pancakes whose separating directions or common
+  // interior are far too narrow for the rounded optimiser below thousands of bits. Each
+  // candidate is checked exactly.
   bool corner_candidates() {
-    constexpr long precision = 192;
-    constexpr int passes = 3;
+    constexpr long first_precision = 192, max_precision = 1024;
+    constexpr int max_passes = 6;
     const CylinderPair<Rational>& e = exact();
     const int larger = e.AA0 + 4 * e.c0.radius * e.c0.radius >= e.AA1 + 4 * e.c1.radius * e.c1.radius ? 0 : 1;
     for (const int i : {larger, 1 - larger}) {
       const Cylinder<Rational>& ci = i == 0 ? e.c0 : e.c1;
       const Cylinder<Rational>& cj = i == 0 ? e.c1 : e.c0;
-      const Point3<Rational> mj = cj.p0 + cj.axis() / Rational(2);
-      Point3<Rational> y = mj;
-      for (int pass = 0; pass < passes; ++pass) {
+      Point3<Rational> y = cj.p0 + cj.axis() / Rational(2);
+      long precision = first_precision;
+      for (int pass = 0; pass < max_passes; ++pass) {
         std::optional<Vec3<Rational>> D;
         std::optional<Point3<Rational>> X;
         Point3<Rational> next;
+        long needed = 0;
         {
           GmpfrPrecision scope(precision);
           const CornerPlane plane = CornerPlane::make(ci, cj, y);
-          const CGAL::Gmpfr t = plane.best(160);
+          const CGAL::Gmpfr t = plane.best(static_cast<int>(precision * 3 / 2));
           const CGAL::Gmpfr g = plane.gain(t);
-          const auto exact_value = [](const CGAL::Gmpfr& x) { return to_rational(x); };
+          needed = plane.bits_to_resolve(t, g);
           if (g > 0) {
             D = plane.direction(t);
           } else if (g < 0) {
             CGAL::Gmpfr spread = nt::constant<CGAL::Gmpfr>(1);
-            mpfr_mul_2si(spread.fr(), spread.fr(), -96, MPFR_RNDN);
-            if (const std::optional<Vec3<Rational>> z = plane.witness_offset(t, spread, precision)) X = mj + *z;
+            mpfr_mul_2si(spread.fr(), spread.fr(), -(precision * 9 / 10), MPFR_RNDN);
+            X = plane.witness(t, spread, precision);
           }
-          next = mj + plane.support_offset(t).map(exact_value);
+          next = plane.support(t).x;
         }
         if (D && exact_separates(*D)) return true;
         if (X && exact_overlaps(*X)) return true;
+        if (needed > precision && precision < max_precision) {
+          precision = std::min(max_precision, std::max(2 * precision, needed));
+          continue;  // the same plane, more bits
+        }
         if (next == y) break;
         y = next;
       }

@@ -1,37 +1,43 @@
 // certcyl/certified/detail/cylinder_corner_plane.hpp -- candidates for a cylinder pair whose
-// operands differ greatly in size: the best direction of one cylinder's rim wedge in the plane
-// through its axis and a point of the other, and the other's deepest point against that wedge.
+// operands or gap differ greatly in size: the best direction of one cylinder's rim wedge in the
+// plane through its axis and a point of the other, and the other's deepest point in that wedge.
 //
-// Semantics. Let cylinder i have end p0, axis A, radius R, and let y be a point.
-// With w the part of y - p0 orthogonal to A (or, for y on the axis, any nonzero w orthogonal to A), e = w / |w|, E the end of i nearer to y along the
-// axis (p1 when (y - p0).A >= A.A / 2, else p0), u = +-A / |A| pointing out of i at E and
-// q = E + R e (the rim point of i in the half-plane of y), every direction D = a u + b e with
-// a, b >= 0 has
+// Semantics. Let cylinder i have end p0, axis A, radius R, and let y be a point. With w the part
+// of y - p0 orthogonal to A (any nonzero vector orthogonal to A when y is on the axis),
+// e = w / |w|, E the end of i nearer to y along the axis (p1 when (y - p0).A >= A.A / 2, else
+// p0), u = +-A / |A| pointing out of i at E and q = E + R e (the rim point of i in the
+// half-plane of y), every direction D = a u + b e with a, b >= 0 has
 //   h_i(D) = D.m_i + |D.A| / 2 + R |D x A| / |A| = a u.E + b (e.p0 + R) = D.q,
-// the support of i in D attained at q, exactly. So D separates i from a cylinder j (midpoint m_j,
-// axis A_j, radius r_j) iff
-//   g(D) = D.(m_j - q) - |D.A_j| / 2 - r_j |D x A_j| / |A_j| > 0,
-// and g, a linear function minus a support function, is concave; on D(t) = (1 - t) u + t e it is
+// the support of i in D attained at q, exactly. A cylinder j (ends E_0, E_1, axis A_j, radius
+// r_j) has min over j of D.x = min_k D.E_k - r_j |D x A_j| / |A_j|, so D separates i from j iff
+//   g(D) = min_k D.(E_k - q) - r_j |D x A_j| / |A_j| > 0.
+// g (a minimum of linear functions minus a norm) is concave; on D(t) = (1 - t) u + t e it is
 // concave in t in [0, 1] and golden-section search finds its maximiser t*. Its inputs are reduced
-// to j's scale without cancellation:
-//   (m_j - q).u = s ((m_j - p0).A - [E = p1] A.A) / |A|   (s = +-1, the sign of u),
-//   (m_j - q).e = (rho^2 - R^2) / (rho + R),  rho = (m_j - p0).w / |w|, rho^2 rational,
-// so a gap of 2^-1800 R survives: the square roots carry only relative rounding.
+// exactly to the scale of the contact, relative to j's ends (not its midpoint: a needle 2^1000
+// long would cancel every bit):
+//   (E_k - q).u = s ((E_k - p0).A - [E = p1] A.A) / |A|   (s = +-1, the sign of u),
+//   (E_k - q).e = (rho^2 - R^2) / (rho + R),  rho = (E_k - p0).w / |w|, rho^2 rational,
+// so a gap of 2^-1800 R survives: each term carries only the relative rounding of a square
+// root. What is left is the cancellation between the terms of g near touching, which the caller
+// meets by raising the precision.
 //
 // By the minimax theorem, when max g < 0 its negative is the depth of the deepest point of j in
-// the wedge {x : u.(x - q) < 0, e.(x - q) < 0}, reached by the support points of j in direction
-// -D(t*) (a combination of the two on either side of t* where the support set is a face).
-// Near y the wedge is i: it differs from i by the curvature of the rim, |x - y|^2 / R at most.
+// the wedge {x : u.(x - q) < 0, e.(x - q) < 0}, reached by the support points E_k + r_j nu of j in
+// direction -D(t*) (a combination of the two on either side of t* where the support set is a
+// face). Near the contact the wedge is i: it differs from i by the curvature of the rim and by
+// i's other end, both far at the scale where this is used.
 //
 // Results: a rational direction D = a' s A + b' w (a', b' >= 0 rounded: it stays in the wedge, so
-// h_i(D) = D.q whatever the rounding) and, when max g < 0, a rational point of j's interior
-// moved from that support point towards m_j by a power of two eta small against the depth.
-// They are candidates only: the caller checks each exactly.
+// h_i(D) = D.q whatever the rounding) and, when max g < 0, a rational point of j's interior: the
+// support point moved towards a point c of j's axis near it (at distance min(r_j, |A_j| / 2)
+// from the end) by a power of two eta small against the depth. They are candidates only: the
+// caller checks each exactly.
 #pragma once
 
 #include <CGAL/Gmpfr.h>
 
 #include <algorithm>
+#include <array>
 #include <optional>
 
 #include "certcyl/certified/detail/cylinder_ellipsoid.hpp"
@@ -45,17 +51,21 @@ class CornerPlane {
  public:
   using F = CGAL::Gmpfr;
 
+  // A point of j: an end plus an offset of length r_j (rounded), and an interior point of j's
+  // axis beside it; with its local coordinates (x - q).u and (x - q).e.
+  struct Point {
+    Point3<Rational> x, c;
+    F xu, xe;
+  };
+
   // The plane of cylinder i through y (any plane through the axis when y is on it), seen by
   // cylinder j. Call inside a GmpfrPrecision scope (it sets the precision of every number here).
   static CornerPlane make(const Cylinder<Rational>& ci, const Cylinder<Rational>& cj, const Point3<Rational>& y) {
     const Vec3<Rational> A = ci.axis(), Aj = cj.axis();
     const Rational AA = dot(A, A);
-    const Vec3<Rational> v = y - ci.p0;
-    const Rational t = dot(v, A) / AA;
-    Vec3<Rational> w = v - t * A;
+    const Rational t = dot(y - ci.p0, A) / AA;
+    Vec3<Rational> w = (y - ci.p0) - t * A;
     if (w == Vec3<Rational>{0, 0, 0}) {
-      // y on the axis: every plane through the axis is alike; take the one through the
-      // coordinate direction least aligned with A.
       const Rational ax = CGAL::abs(A.x), ay = CGAL::abs(A.y), az = CGAL::abs(A.z);
       const Vec3<Rational> k = ax <= ay && ax <= az ? Vec3<Rational>{1, 0, 0} : ay <= az ? Vec3<Rational>{0, 1, 0} : Vec3<Rational>{0, 0, 1};
       w = k - (dot(k, A) / AA) * A;
@@ -63,38 +73,46 @@ class CornerPlane {
     const Rational ww = dot(w, w);
     const bool far_end = 2 * t >= 1;
     CornerPlane c;
+    c.p0_ = ci.p0;
+    c.AA_ = AA;
+    c.ww_ = ww;
+    c.R_ = ci.radius;
+    c.far_end_ = far_end;
     c.axial_ = far_end ? A : Vec3<Rational>(-A);
     c.radial_ = w;
     c.inv_axial_ = k(1) / CGAL::sqrt(f(AA));
     c.inv_radial_ = k(1) / CGAL::sqrt(f(ww));
-    const Point3<Rational> mj = cj.p0 + Aj / Rational(2);
-    const Vec3<Rational> vm = mj - ci.p0;
-    c.ca_ = f(far_end ? Rational(dot(vm, A) - AA) : Rational(-dot(vm, A))) * c.inv_axial_;
-    const Rational rho_w = dot(vm, w);  // rho |w|
-    const Rational R2 = ci.radius * ci.radius;
-    if (rho_w > 0) {
-      const F rho = f(rho_w) * c.inv_radial_;
-      c.cr_ = f(rho_w * rho_w / ww - R2) / (rho + f(ci.radius));
-    } else {
-      c.cr_ = f(rho_w) * c.inv_radial_ - f(ci.radius);
-    }
-    c.ja_ = f(dot(c.axial_, Aj)) * c.inv_axial_;
-    c.jr_ = f(dot(w, Aj)) * c.inv_radial_;
+    c.Rf_ = f(ci.radius);
+    c.E_ = {cj.p0, cj.p1};
+    c.Aj_exact_ = Aj;
+    c.AAj_ = dot(Aj, Aj);
+    for (int e = 0; e < 2; ++e) c.local(c.E_[e], c.ca_[e], c.cr_[e]);
     c.jj_ = f(dot(Aj, Aj));
     c.rj_ = f(cj.radius);
     c.u_ = c.axial_.map(f) * c.inv_axial_;
     c.e_ = w.map(f) * c.inv_radial_;
     c.Aj_ = Aj.map(f);
+    c.ux_ = cross(c.axial_, Aj).map(f) * c.inv_axial_;
+    c.ex_ = cross(w, Aj).map(f) * c.inv_radial_;
+    // The interior points of j's axis beside each end: at min(r_j, |A_j| / 2) from it (rounded
+    // to a rational fraction lambda of the axis, 0 < lambda <= 1/2).
+    Rational lambda(1, 2);
+    const F ratio = c.rj_ / CGAL::sqrt(c.jj_);
+    if (ratio < k(1) / k(2)) lambda = to_rational(ratio);
+    if (!(lambda > 0)) lambda = Rational(1, 2);
+    c.inner_ = {cj.p0 + lambda * Aj, cj.p1 - lambda * Aj};
     return c;
   }
 
-  // g(D(t)).
+  // g(D(t)); and the magnitude of its terms (the scale of its rounding error).
   F gain(const F& t) const {
     const F a = k(1) - t;
-    const F dA = a * ja_ + t * jr_;
-    F perp = a * a + t * t - dA * dA / jj_;
-    if (perp < 0) perp = k(0);
-    return a * ca_ + t * cr_ - CGAL::abs(dA) / k(2) - rj_ * CGAL::sqrt(perp);
+    const F lowest = std::min(a * ca_[0] + t * cr_[0], a * ca_[1] + t * cr_[1]);
+    return lowest - rj_ * CGAL::sqrt(perp(t));
+  }
+  F scale(const F& t) const {
+    const F a = k(1) - t;
+    return CGAL::abs(a * ca_[0]) + CGAL::abs(t * cr_[0]) + CGAL::abs(a * ca_[1]) + CGAL::abs(t * cr_[1]) + rj_;
   }
 
   // The maximiser of gain on [0, 1], by golden-section search (gain is concave).
@@ -103,7 +121,7 @@ class CornerPlane {
     F lo = k(0), hi = k(1);
     F x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo);
     F g1 = gain(x1), g2 = gain(x2);
-    for (int k = 0; k < iterations; ++k) {
+    for (int n = 0; n < iterations; ++n) {
       if (g1 < g2) {
         lo = x1;
         x1 = x2;
@@ -130,70 +148,111 @@ class CornerPlane {
     return to_rational((k(1) - t) * inv_axial_) * axial_ + to_rational(t * inv_radial_) * radial_;
   }
 
-  // The offset from m_j of j's support point in direction -D(t) (rounded; on j's boundary to
-  // the working precision).
-  Vec3<F> support_offset(const F& t) const {
-    const Vec3<F> D = u_ * (k(1) - t) + e_ * t;
-    const F dA = dot(D, Aj_);
-    const Vec3<F> perp = D - Aj_ * (dA / jj_);
-    const F pp = dot(perp, perp);
-    const F half = k(1) / k(2);
-    Vec3<F> z = Aj_ * (dA > 0 ? -half : dA < 0 ? half : k(0));
-    if (pp > 0) z = z - perp * (rj_ / CGAL::sqrt(pp));
-    return z;
+  // j's support point in direction -D(t): the lower end plus r_j times the unit part of -D
+  // orthogonal to A_j (rounded to the working precision), and the interior point beside it.
+  Point support(const F& t) const {
+    const F a = k(1) - t;
+    const int end = a * ca_[0] + t * cr_[0] <= a * ca_[1] + t * cr_[1] ? 0 : 1;
+    const Vec3<F> D = u_ * a + e_ * t;
+    const Vec3<F> p = D - Aj_ * (dot(D, Aj_) / jj_);
+    const F pp = dot(p, p);
+    Point s{E_[end], inner_[end], ca_[end], cr_[end]};
+    if (pp > 0) {
+      const Vec3<F> offset = p * (-rj_ / CGAL::sqrt(pp));
+      // Exactly in the plane of the end disc (near a face, p is small and its rounding tilts it).
+      Vec3<Rational> o = offset.map([](const F& x) { return to_rational(x); });
+      o = o - (dot(o, Aj_exact_) / AAj_) * Aj_exact_;
+      s.x = E_[end] + o;
+      local(s.x, s.xu, s.xe);
+    }
+    return s;
   }
 
-  // Depth of m_j + z in the wedge: min(-u.(x - q), -e.(x - q)).
-  F depth(const Vec3<F>& z) const {
-    const F da = -(ca_ + dot(z, u_)), dr = -(cr_ + dot(z, e_));
-    return da < dr ? da : dr;
-  }
-
-  // A candidate interior point of j deepest in the wedge, as the offset z from m_j (the caller
-  // adds m_j), or nullopt when no point of j is in the wedge to the working precision. `spread`
-  // is the step either side of t where the support set of j may be a face; eta the inset.
-  std::optional<Vec3<Rational>> witness_offset(const F& t, const F& spread, long precision) const {
+  // A candidate interior point of j deepest in the wedge, or nullopt when none is in the wedge
+  // at the working precision or the inset would be below the rounding of the support points.
+  // `spread`: the step either side of t where the support set of j may be a face.
+  std::optional<Point3<Rational>> witness(const F& t, const F& spread, long precision) const {
     const F lo = t - spread < 0 ? k(0) : F(t - spread), hi = t + spread > 1 ? k(1) : F(t + spread);
-    const Vec3<F> zm = support_offset(lo), zp = support_offset(hi);
-    // The combination of zm and zp whose axial and radial depths are equal.
-    const F da_m = -(ca_ + dot(zm, u_)), dr_m = -(cr_ + dot(zm, e_));
-    const F da_p = -(ca_ + dot(zp, u_)), dr_p = -(cr_ + dot(zp, e_));
-    const F den = (da_m - da_p) - (dr_m - dr_p);
-    Vec3<F> best = zm;
-    F best_depth = depth(zm);
-    const auto consider = [&](const Vec3<F>& z) {
-      const F d = depth(z);
+    const Point m = support(lo), p = support(hi);
+    const auto depth = [](const F& xu, const F& xe) { return -(xu > xe ? xu : xe); };
+    // The combination lambda m + (1 - lambda) p whose two depths are equal.
+    Rational lambda = 1;
+    F best_depth = depth(m.xu, m.xe);
+    if (depth(p.xu, p.xe) > best_depth) {
+      lambda = 0;
+      best_depth = depth(p.xu, p.xe);
+    }
+    const F den = (m.xu - p.xu) - (m.xe - p.xe);
+    if (den != 0) {
+      F l = (p.xe - p.xu) / den;
+      if (l < 0) l = k(0);
+      if (l > 1) l = k(1);
+      const Rational lq = to_rational(l);
+      const F lf = f(lq);
+      const F d = depth(lf * m.xu + (k(1) - lf) * p.xu, lf * m.xe + (k(1) - lf) * p.xe);
       if (d > best_depth) {
-        best = z;
+        lambda = lq;
         best_depth = d;
       }
-    };
-    consider(zp);
-    if (den != 0) {
-      F lambda = (dr_p - da_p) / den;
-      if (lambda < 0) lambda = k(0);
-      if (lambda > 1) lambda = k(1);
-      consider(zm * lambda + zp * (k(1) - lambda));
     }
     if (!(best_depth > 0)) return std::nullopt;
-    // eta = 2^-k <= depth / (2 |z|_1): moving by eta z costs at most half the depth.
-    const F size = CGAL::abs(best.x) + CGAL::abs(best.y) + CGAL::abs(best.z);
-    if (!(size > 0)) return best.map([](const F& x) { return to_rational(x); });
-    const long shift = std::max(1L, static_cast<long>(mpfr_get_exp(F(k(2) * size / best_depth).fr())) + 1);
-    if (shift > precision - 20) return std::nullopt;  // the rounding of z would not be covered
-    const Rational shrink = Rational(1) - times_two_power(Rational(1), -shift);
-    return best.map([&shrink](const F& x) { return shrink * to_rational(x); });
+    const Point3<Rational> x = m.x + (Rational(1) - lambda) * (p.x - m.x);
+    const Point3<Rational> c = m.c + (Rational(1) - lambda) * (p.c - m.c);
+    // eta = 2^-shift with eta |x - c|_1 <= depth / 4: the inset costs at most a quarter of the
+    // depth; and eta far above the rounding of the offsets (r_j 2^-precision against the
+    // distance min(r_j, |A_j| / 2) of c from j's boundary).
+    const Vec3<Rational> xc = x - c;
+    const F size = f(CGAL::abs(xc.x) + CGAL::abs(xc.y) + CGAL::abs(xc.z));
+    const long shift = std::max(1L, exponent(k(4) * size / best_depth) + 1);
+    const long room = exponent(CGAL::sqrt(jj_) / rj_);
+    if (shift + std::max(0L, -room) + 24 > precision) return std::nullopt;
+    const Rational eta = times_two_power(Rational(1), -shift);
+    return x + eta * (c - x);
+  }
+
+  // Precision needed to resolve a gain of g at t: its terms' scale over |g|, in bits.
+  long bits_to_resolve(const F& t, const F& g) const {
+    if (g == 0) return std::numeric_limits<long>::max();
+    return exponent(scale(t) / CGAL::abs(g)) + 32;
   }
 
  private:
   static F f(const Rational& q) { return nt::from_rational<F>(q); }
   static F k(int n) { return nt::constant<F>(n); }
+  static long exponent(const F& x) { return x == 0 ? 0 : static_cast<long>(mpfr_get_exp(x.fr())); }
 
+  // (x - q).u and (x - q).e for a rational x, reduced exactly (see the header).
+  void local(const Point3<Rational>& x, F& xu, F& xe) const {
+    const Vec3<Rational> v = x - p0_;
+    const Rational along = dot(v, axial_);  // s (x - p0).A
+    xu = f(far_end_ ? Rational(along - AA_) : along) * inv_axial_;
+    const Rational rho_w = dot(v, radial_);  // rho |w|
+    if (rho_w > 0) {
+      const F rho = f(rho_w) * inv_radial_;
+      xe = f(rho_w * rho_w / ww_ - R_ * R_) / (rho + Rf_);
+    } else {
+      xe = f(rho_w) * inv_radial_ - Rf_;
+    }
+  }
+
+  // |D x A_j|^2 / |A_j|^2 for D(t), from the vector D x A_j = (1 - t) u x A_j + t e x A_j: near
+  // D || A_j its components are accurate to the working precision, where |D|^2 - (D.A_j)^2 / A_j.A_j
+  // would keep only half of it.
+  F perp(const F& t) const {
+    const Vec3<F> x = ux_ * (k(1) - t) + ex_ * t;
+    return dot(x, x) / jj_;
+  }
+
+  Point3<Rational> p0_;
+  Rational AA_, ww_, R_, AAj_;
+  Vec3<Rational> Aj_exact_;
+  bool far_end_ = false;
   Vec3<Rational> axial_, radial_;  // s A and w
-  F inv_axial_, inv_radial_;       // 1 / |A|, 1 / |w|
-  F ca_, cr_;                      // (m_j - q).u, (m_j - q).e
-  F ja_, jr_, jj_, rj_;            // A_j.u, A_j.e, A_j.A_j, r_j
-  Vec3<F> u_, e_, Aj_;
+  F inv_axial_, inv_radial_, Rf_;  // 1 / |A|, 1 / |w|, R
+  std::array<Point3<Rational>, 2> E_, inner_;
+  std::array<F, 2> ca_, cr_;  // (E_k - q).u, (E_k - q).e
+  F jj_, rj_;                 // A_j.A_j, r_j
+  Vec3<F> u_, e_, Aj_, ux_, ex_;  // u, e, A_j, u x A_j, e x A_j
 };
 
 }  // namespace certcyl::detail
