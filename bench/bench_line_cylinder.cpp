@@ -27,6 +27,7 @@
 #include "certcyl/robust/line_cylinder.hpp"
 #include "certcyl/seeds/gullotti_line_elliptic_cylinder.hpp"
 #include "certcyl/seeds/shene_line_cylinder.hpp"
+#include "near_features.hpp"
 
 using namespace certcyl;
 
@@ -70,13 +71,8 @@ detail::LineShape decide(const Query& q, LineStageCounter& c) {
   return certified_line_cylinder_shape(Line<double>{q.origin, q.second}, q.cyl, c);
 }
 
-Vec3<double> vcross(const Vec3<double>& a, const Vec3<double>& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-Vec3<double> unit(const Vec3<double>& v) {
-  const double n = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
-  return {v.x / n, v.y / n, v.z / n};
-}
+using bench::unit;
+using bench::vcross;
 
 std::vector<Query> make_family(int family) {
   std::mt19937_64 rng(100 + family);

@@ -2,8 +2,9 @@
 // certified predicate, on the same binary64 inputs, side by side.
 //   eberly_double           seeds/eberly_triangle_cylinder.hpp in double (not certified)
 //   certified_answer        classify_triangle_cylinder on binary64 input: semi-static double
-//                           filter, then Interval_nt, then Mpzf; the counters give the fraction
-//                           of queries each stage decided (static, interval, exact)
+//                           filter, double-double, then Interval_nt, then Mpzf; the counters
+//                           give the fraction of queries each stage decided (static, dd,
+//                           interval, exact)
 //   certified_answer_gmpq   the same on Rational (Gmpq) input: binary64 values are detected
 //                           and take the double path
 //   certified_certificate   certified_triangle_cylinder: the answer plus its exact, checked
@@ -11,14 +12,28 @@
 // Inputs: "random" (coordinates uniform in [-2, 2], radius in [0.1, 1.5]) and "near" (contacts
 // with the wall, a cap and a rim of the cylinder z in [0, 2], radius 1, moved by -2..2 ulps,
 // and translated by random dyadic offsets).
+// BM_family/<k>: the hard families in any orientation, one boundary feature each (a vertex,
+// an edge or the face of the triangle on the wall, in a cap plane, on a rim), built in double
+// in the cylinder's frame, rounded and moved by -3..3 ulps per coordinate, so each instance is
+// within a few ulps of the contact (its side is whatever the rounding gives). Per family: Google
+// Benchmark's mean of classify_triangle_cylinder cycling through the 1,024 instances, and per
+// instance the median of 3 batches of 4 calls (median_ns, p99_ns, max_ns over the instances);
+// read each mean against BM_family/0 (random triangles) of the same run. Every answer is
+// compared with the decision in Gmpq (detail::decide_in<Rational>); a disagreement makes the
+// run exit non-zero.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <array>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <vector>
 
 #include "certcyl/certified/triangle_cylinder.hpp"
 #include "certcyl/seeds/eberly_triangle_cylinder.hpp"
+#include "near_features.hpp"
 
 using namespace certcyl;
 
@@ -98,6 +113,7 @@ void eberly_double(benchmark::State& state, const Inputs& in) {
 void stage_counters(benchmark::State& state, const TriangleFilterStages& st) {
   const auto calls = static_cast<double>(st.calls);
   state.counters["static"] = static_cast<double>(st.semi_static) / calls;
+  state.counters["dd"] = static_cast<double>(st.double_double) / calls;
   state.counters["interval"] = static_cast<double>(st.interval) / calls;
   state.counters["exact"] = static_cast<double>(st.exact) / calls;
 }
@@ -137,6 +153,129 @@ void certified_certificate(benchmark::State& state, const Inputs& in) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// ---- the near-feature families in any orientation -------------------------------------------
+
+enum Family : int {
+  kRandom,
+  kVertexOnWall,   // one vertex on the wall at mid-height, the triangle outside
+  kEdgeOnWall,     // an edge tangent to the wall (in the tangent plane), the third vertex outside
+  kFaceOnWall,     // the triangle in a tangent plane of the wall
+  kFaceInCap,      // the triangle in a cap plane, across the cap's disk
+  kVertexOnRim,    // one vertex on a rim, the triangle outside
+  kEdgeOnRim,      // an edge tangent to a rim circle (in the cap plane), the third vertex outside
+  kVertexInCap,    // one vertex inside a cap's disk, the triangle beyond the cap
+  kFamilies
+};
+const char* const family_names[kFamilies] = {"random",      "vertex_on_wall", "edge_on_wall",  "face_on_wall",
+                                             "face_in_cap", "vertex_on_rim",  "edge_on_rim",   "vertex_in_cap"};
+
+struct TriangleQuery {
+  Triangle<double> t;
+  Cylinder<double> c;
+};
+
+std::vector<TriangleQuery> make_family(int family) {
+  using bench::unit;
+  using bench::vcross;
+  std::vector<TriangleQuery> out;
+  if (family == kRandom) {
+    const Inputs& r = random_inputs();
+    for (std::size_t i = 0; i < r.td.size(); ++i) out.push_back({r.td[i], r.cd[i]});
+    return out;
+  }
+  std::mt19937_64 rng(200 + family);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> ulps(-3, 3);
+  const auto rv = [&] { return Vec3<double>{u(rng), u(rng), u(rng)}; };
+  const auto nudge = [&](double x) {
+    const int k = ulps(rng);
+    for (int i = 0; i < std::abs(k); ++i) x = std::nextafter(x, k > 0 ? INFINITY : -INFINITY);
+    return x;
+  };
+  const auto nudge3 = [&](const Vec3<double>& v) { return Vec3<double>{nudge(v.x), nudge(v.y), nudge(v.z)}; };
+  const auto pos = [&] { return 0.25 + std::fabs(u(rng)); };
+  while (static_cast<int>(out.size()) < kInstances) {
+    const Vec3<double> p0 = rv(), p1 = p0 + rv() * 2.0;
+    const double r = 0.25 + std::fabs(u(rng));
+    const Vec3<double> A = p1 - p0, a = unit(A);
+    const Vec3<double> n = unit(vcross(A, rv())), m = unit(vcross(a, n));
+    const Vec3<double> W = p0 + A * (0.25 + 0.5 * std::fabs(u(rng))) + n * r;  // a wall point, normal n
+    const Vec3<double> P = p1 + n * r;                                         // a rim point of cap 1
+    Vec3<double> v0, v1, v2;
+    switch (family) {
+      case kVertexOnWall: v0 = W, v1 = W + n * pos() + m * u(rng), v2 = W + n * pos() + a * u(rng); break;
+      case kEdgeOnWall: {
+        const Vec3<double> d = m + a * (0.5 * u(rng));
+        v0 = W - d * pos(), v1 = W + d * pos(), v2 = W + n * pos() + m * u(rng);
+        break;
+      }
+      case kFaceOnWall: v0 = W - m * pos(), v1 = W + m * pos() + a * (0.5 * pos()), v2 = W + m * u(rng) - a * (0.5 * pos()); break;
+      case kFaceInCap: v0 = p1 + n * (2 * r * u(rng)) + m * (2 * r), v1 = p1 + n * (2 * r * u(rng)) - m * (2 * r), v2 = p1 + n * (2 * r) + m * u(rng); break;
+      case kVertexOnRim: v0 = P, v1 = P + n * pos() + a * u(rng), v2 = P + a * pos() + m * u(rng); break;
+      case kEdgeOnRim: v0 = P - m * pos(), v1 = P + m * pos(), v2 = P + n * pos() + a * pos(); break;
+      default: {  // kVertexInCap
+        const Vec3<double> V = p1 + n * (r * 0.9 * u(rng)) + m * (r * 0.4 * u(rng));
+        v0 = V, v1 = V + a * pos() + n * u(rng), v2 = V + a * pos() + m * u(rng);
+        break;
+      }
+    }
+    out.push_back({Triangle<double>{{nudge3(v0), nudge3(v1), nudge3(v2)}}, Cylinder<double>{nudge3(p0), nudge3(p1), r}});
+  }
+  return out;
+}
+
+const std::vector<TriangleQuery>& family(int k) {
+  static const std::array<std::vector<TriangleQuery>, kFamilies> all = [] {
+    std::array<std::vector<TriangleQuery>, kFamilies> f;
+    for (int i = 0; i < kFamilies; ++i) f[i] = make_family(i);
+    return f;
+  }();
+  return all[k];
+}
+
+int disagreements = 0;
+
+// Nanoseconds of one decision: the median of 3 batches of 4 calls.
+double call_ns(const TriangleQuery& q) {
+  std::array<double, 3> t{};
+  TriangleFilterStages st;
+  for (double& x : t) {
+    const auto s = std::chrono::steady_clock::now();
+    for (int k = 0; k < 4; ++k) benchmark::DoNotOptimize(classify_triangle_cylinder(q.t, q.c, st));
+    x = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - s).count() / 4;
+  }
+  std::sort(t.begin(), t.end());
+  return t[1];
+}
+
+void BM_family(benchmark::State& state) {
+  const std::vector<TriangleQuery>& f = family(static_cast<int>(state.range(0)));
+  std::size_t i = 0;
+  TriangleFilterStages st;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(classify_triangle_cylinder(f[i].t, f[i].c, st));
+    if (++i == f.size()) i = 0;
+  }
+  std::vector<double> t;
+  TriangleFilterStages once;
+  std::array<int, 4> answers{};
+  for (const TriangleQuery& q : f) {
+    t.push_back(call_ns(q));
+    const Answer a = classify_triangle_cylinder(q.t, q.c, once);
+    ++answers[static_cast<std::size_t>(a)];
+    if (a != detail::decide_in<Rational>(q.t, q.c).answer) ++disagreements;
+  }
+  std::sort(t.begin(), t.end());
+  state.counters["median_ns"] = t[t.size() / 2];
+  state.counters["p99_ns"] = t[t.size() * 99 / 100];
+  state.counters["max_ns"] = t.back();
+  stage_counters(state, once);
+  state.counters["separated"] = answers[static_cast<std::size_t>(Answer::separated)];
+  state.counters["touching"] = answers[static_cast<std::size_t>(Answer::touching)];
+  state.counters["overlapping"] = answers[static_cast<std::size_t>(Answer::overlapping)];
+  state.SetLabel(family_names[state.range(0)]);
+}
+
 }  // namespace
 
 BENCHMARK_CAPTURE(eberly_double, random, random_inputs());
@@ -148,4 +287,15 @@ BENCHMARK_CAPTURE(certified_answer, near, near_inputs());
 BENCHMARK_CAPTURE(certified_answer_gmpq, near, near_inputs());
 BENCHMARK_CAPTURE(certified_certificate, near, near_inputs());
 
-BENCHMARK_MAIN();
+BENCHMARK(BM_family)->DenseRange(0, kFamilies - 1);
+
+// Google Benchmark's main, and a non-zero exit status when a family's answer disagreed with
+// the decision in Gmpq (the smoke run in the tests relies on it).
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  if (disagreements > 0) std::fprintf(stderr, "bench_triangle_cylinder: %d answers disagree with the decision in Gmpq\n", disagreements);
+  return disagreements > 0 ? 1 : 0;
+}

@@ -109,6 +109,29 @@ BOOST_AUTO_TEST_CASE(error_constants) {
   BOOST_TEST(derived.point[1].e > derived.point[0].e);
 }
 
+// The double-double stage's constants: the same trees and degrees, errors of the order of
+// 2^-100 times the tree's size (at least one rounding, far below the double filter's).
+BOOST_AUTO_TEST_CASE(double_double_error_constants) {
+  const detail::StaticBounds& s = detail::triangle_static_bounds();
+  const detail::StaticBounds& dd = detail::triangle_double_double_bounds();
+  const auto check = [](const char* name, const detail::StaticBounds::Entry& d, const detail::StaticBounds::Entry& st) {
+    BOOST_TEST(d.degree == st.degree, name);
+    BOOST_TEST(d.e >= 0x1p-101, name);
+    BOOST_TEST(d.e < st.e * 0x1p-40, name);
+    BOOST_TEST(d.b < 0x1p40, name);  // the margin of the header's overflow argument
+  };
+  check("axial", dd.axial, s.axial);
+  check("point crossing", dd.point[1], s.point[1]);
+  check("pierce c-c", dd.pierce[1][1], s.pierce[1][1]);
+  check("gap c-c", dd.gap[1][1], s.gap[1][1]);
+  check("slope c-c at c", dd.slope[1][1][1], s.slope[1][1][1]);
+  // Outside the window the stage is skipped, whatever the input.
+  const TD t{{Point3<double>{0x1p-30, 0, 1}, Point3<double>{3, 0, 1}, Point3<double>{3, 1, 1}}};
+  BOOST_TEST(!detail::double_double_decide_triangle_cylinder(t, Z).has_value());
+  const TD big{{Point3<double>{0x1p61, 0, 1}, Point3<double>{3, 0, 1}, Point3<double>{3, 1, 1}}};
+  BOOST_TEST(!detail::double_double_decide_triangle_cylinder(big, Z).has_value());
+}
+
 // The scale: a power of two strictly above the largest magnitude, inside [2^-64, 2^64].
 BOOST_AUTO_TEST_CASE(scale) {
   BOOST_TEST(*detail::static_scale(1.0) == 2.0);
@@ -127,15 +150,20 @@ BOOST_AUTO_TEST_CASE(scale) {
 BOOST_AUTO_TEST_CASE(degeneracies_are_not_decided) {
   for (const HandCase& hc : kContacts) {
     BOOST_TEST(!detail::static_decide_triangle_cylinder(hc.t, Z).has_value(), hc.name);
+    BOOST_TEST(!detail::double_double_decide_triangle_cylinder(hc.t, Z).has_value(), hc.name);
     TriangleFilterStages st;
     BOOST_TEST(classify_triangle_cylinder(hc.t, Z, st) == hc.answer, hc.name);
     BOOST_TEST(st.semi_static == 0u, hc.name);
+    BOOST_TEST(st.double_double == 0u, hc.name);
     // Moved by one ulp either way the contact is gone; whatever stage decides, it is right.
     for (const double dir : {-INFINITY, INFINITY}) {
       TD t = hc.t;
       t.v[0].x = std::nextafter(t.v[0].x, dir);
       const Answer expected = gmpq_decision(t, Z).answer;
       if (const auto d = detail::static_decide_triangle_cylinder(t, Z)) BOOST_TEST(d->answer == expected, hc.name);
+      // One ulp is far above double-double's error, but other signs of the decision may still
+      // be exact zeros (then the stage gives up); when it decides, it is right.
+      if (const auto dd = detail::double_double_decide_triangle_cylinder(t, Z)) BOOST_TEST(dd->answer == expected, hc.name);
       BOOST_TEST(classify_triangle_cylinder(t, Z, st) == expected, hc.name);
     }
   }
@@ -267,12 +295,14 @@ BOOST_AUTO_TEST_CASE(random_cross_check) {
     }
     BOOST_TEST(static_decided == static_cast<int>(stages.semi_static));
     BOOST_TEST(stages.calls == static_cast<std::uint64_t>(n));
-    BOOST_TEST(stages.semi_static + stages.interval + stages.exact == stages.calls);
+    BOOST_TEST(stages.semi_static + stages.double_double + stages.interval + stages.exact == stages.calls);
     std::cout << "  " << names[gen] << ": " << n << " instances, static "
-              << stages.semi_static << ", interval " << stages.interval << ", exact " << stages.exact
+              << stages.semi_static << ", double-double " << stages.double_double << ", interval " << stages.interval
+              << ", exact " << stages.exact
               << "; separated " << answers[0] << ", touching " << answers[1] << ", overlapping " << answers[2] << "\n";
     if (gen == 0) BOOST_TEST(stages.semi_static > stages.calls * 9 / 10);  // generic input: the static stage decides
-    if (gen == 1) BOOST_TEST(stages.interval + stages.exact > 0u);          // near-degenerate: it must give up sometimes
+    if (gen == 1) BOOST_TEST(stages.double_double + stages.interval + stages.exact > 0u);  // near-degenerate: it must give up sometimes
+    if (gen == 1) BOOST_TEST(stages.double_double > 0u);  // a few ulps off a contact: double-double decides some
     if (gen == 2) BOOST_TEST(stages.semi_static > 0u);
   }
 }

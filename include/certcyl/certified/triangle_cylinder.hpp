@@ -14,11 +14,13 @@
 // by sign tests (detail/triangle_slab.hpp has the outline and the degrees).
 //
 // Two entry points:
-//   classify_triangle_cylinder(T, C, counter)   the answer only, filtered in three stages:
+//   classify_triangle_cylinder(T, C, counter)   the answer only, filtered in four stages:
 //       a semi-static double filter (detail/triangle_static_filter.hpp: each sign decided in
 //       double when it exceeds an error bound derived from its expression tree; binary64 input,
-//       or Rational input whose numbers are all binary64), then Interval_nt, then exact
-//       arithmetic (Mpzf for binary64 input, Gmpq otherwise). A TriangleFilterStages counter
+//       or Rational input whose numbers are all binary64), the same decision in double-double
+//       with bounds from the same trees (detail/triangle_double_double.hpp; binary64 input of
+//       magnitudes 0 or 2^-24 .. 2^60), then Interval_nt, then exact arithmetic (Mpzf for
+//       binary64 input, Gmpq otherwise). A TriangleFilterStages counter
 //       records which stage decided; a FilterCounter counts the exact fall-backs.
 //   certified_triangle_cylinder(T, C)           the answer (filtered, as above) and its
 //       certificate, checked exactly before it is returned (check_triangle_cylinder_certificate):
@@ -67,6 +69,7 @@
 
 #include "certcyl/answer.hpp"
 #include "certcyl/certified/detail/triangle_slab.hpp"
+#include "certcyl/certified/detail/triangle_double_double.hpp"
 #include "certcyl/certified/detail/triangle_static_filter.hpp"
 #include "certcyl/filtered.hpp"
 #include "certcyl/number_traits.hpp"
@@ -78,13 +81,15 @@ namespace certcyl {
 // Which stage of the filtered decision decided, per call.
 struct TriangleFilterStages {
   std::uint64_t calls = 0;
-  std::uint64_t semi_static = 0;  // the double filter with static error bounds
-  std::uint64_t interval = 0;     // Interval_nt
+  std::uint64_t semi_static = 0;    // the double filter with static error bounds
+  std::uint64_t double_double = 0;  // the same decision in double-double, with its error bounds
+  std::uint64_t interval = 0;       // Interval_nt
   std::uint64_t exact = 0;        // Mpzf or Gmpq
 
   TriangleFilterStages& operator+=(const TriangleFilterStages& o) {
     calls += o.calls;
     semi_static += o.semi_static;
+    double_double += o.double_double;
     interval += o.interval;
     exact += o.exact;
     return *this;
@@ -194,6 +199,10 @@ inline SlabDecision decide_filtered(const Triangle<double>& T, const Cylinder<do
   ++stages.calls;
   if (const std::optional<SlabDecision> d = static_decide_triangle_cylinder(T, C)) {
     ++stages.semi_static;
+    return *d;
+  }
+  if (const std::optional<SlabDecision> d = double_double_decide_triangle_cylinder(T, C)) {
+    ++stages.double_double;
     return *d;
   }
   return decide_interval_then_exact<CGAL::Mpzf>(T, C, stages);

@@ -54,27 +54,35 @@
 
 namespace certcyl::detail {
 
-// The error calculus above. Operations must run under upward rounding.
-struct ErrorBound {
-  static constexpr double u = 0x1p-52;
+// The error calculus above, for an arithmetic whose operations err by at most Unit::value
+// relatively (2^-52 here; 2^-100 for the double-double stage, triangle_double_double.hpp).
+// Operations must run under upward rounding.
+struct DoubleUnit {
+  static constexpr double value = 0x1p-52;
+};
+
+template <class Unit>
+struct ErrorBoundIn {
+  static constexpr double u = Unit::value;
   double b = 0, e = 0;
   int d = 0;
 
-  friend ErrorBound operator+(const ErrorBound& x, const ErrorBound& y) {
+  friend ErrorBoundIn operator+(const ErrorBoundIn& x, const ErrorBoundIn& y) {
     // A sum of terms of different degrees would not scale with M2^d: marked by degree -1.
     const double s = x.b + y.b;
     return {s * (1 + u), x.e + y.e + u * s, x.d == y.d ? x.d : -1};
   }
-  friend ErrorBound operator-(const ErrorBound& x, const ErrorBound& y) { return x + y; }
-  friend ErrorBound operator-(const ErrorBound& x) { return x; }
-  friend ErrorBound operator*(const ErrorBound& x, const ErrorBound& y) {
+  friend ErrorBoundIn operator-(const ErrorBoundIn& x, const ErrorBoundIn& y) { return x + y; }
+  friend ErrorBoundIn operator-(const ErrorBoundIn& x) { return x; }
+  friend ErrorBoundIn operator*(const ErrorBoundIn& x, const ErrorBoundIn& y) {
     const double p = x.b * y.b;
     return {p * (1 + u), x.e * y.b + x.b * y.e + x.e * y.e + u * p, x.d < 0 || y.d < 0 ? -1 : x.d + y.d};
   }
-  static ErrorBound larger(const ErrorBound& x, const ErrorBound& y) {
+  static ErrorBoundIn larger(const ErrorBoundIn& x, const ErrorBoundIn& y) {
     return {std::max(x.b, y.b), std::max(x.e, y.e), x.d == y.d ? x.d : -1};
   }
 };
+using ErrorBound = ErrorBoundIn<DoubleUnit>;
 
 // The constant e and degree d of every sign test, by the kinds of the points involved.
 struct StaticBounds {
@@ -103,11 +111,13 @@ struct StaticBounds {
   }
 };
 
-// Runs the decision's expression trees on ErrorBound (see the header comment).
-inline StaticBounds derive_static_bounds() {
+// Runs the decision's expression trees on an error calculus EB (see the header comment), from
+// the bound of a leaf a_i, A (the rounded difference of two inputs in double; exact in
+// double-double).
+template <class EB>
+StaticBounds derive_bounds(const EB& difference) {
   CGAL::Protect_FPU_rounding<true> upward;
-  using EB = ErrorBound;
-  const EB difference{1, ErrorBound::u * (1 + 0x1p-50), 1}, exact_leaf{1, 0, 1}, one{1, 0, 0};
+  const EB exact_leaf{1, 0, 1}, one{1, 0, 0};
   const Vec3<EB> a{difference, difference, difference};
   const Vec3<EB> A = a;
   const EB AA = dot(A, A);
@@ -138,6 +148,10 @@ inline StaticBounds derive_static_bounds() {
     }
   }
   return t;
+}
+
+inline StaticBounds derive_static_bounds() {
+  return derive_bounds(ErrorBound{1, ErrorBound::u * (1 + 0x1p-50), 1});
 }
 
 inline const StaticBounds& triangle_static_bounds() {
