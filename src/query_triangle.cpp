@@ -10,7 +10,7 @@
 namespace certcyl::cli {
 
 ojson triangle_cylinder_json(const TriangleCylinderResult& r) {
-  const std::string stage = r.stages.exact ? "exact" : (r.stages.interval ? "interval" : "static");
+  const std::string stage = r.stages.exact ? "exact" : r.stages.interval ? "interval" : r.stages.double_double ? "double_double" : "static";
   ojson out = answer_json(r.answer, true, "certified", stage);
   ojson cert;
   if (r.witness) cert["witness"] = exact_json(*r.witness);
