@@ -36,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "checked_main.hpp"
 #include "../tests/test_cylinder_cylinder_cases.hpp"
 #include "certcyl/certified/cylinder_cylinder.hpp"
 #include "cylinder_pairs.hpp"
@@ -348,13 +349,8 @@ const bool registered = [] {
 
 }  // namespace
 
-// Google Benchmark's main, and a non-zero exit status when an answer contradicted the
-// construction or was undecided (the smoke run in the tests relies on it).
+// Google Benchmark's main; exit status 1 when an answer failed its check (checked_main.hpp).
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  if (contradictions > 0) std::fprintf(stderr, "bench_cylinder_hard: %d answers contradict the construction or are undecided\n", contradictions);
-  return contradictions > 0 ? 1 : 0;
+  return certcyl::bench::run_checked_benchmarks(argc, argv, contradictions, "bench_cylinder_hard: answers that contradict the construction or are undecided");
 }
+

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "checked_main.hpp"
 #include "../tests/test_cylinder_wide_range_cases.hpp"
 #include "certcyl/certified/cylinder_cylinder.hpp"
 
@@ -109,11 +110,8 @@ const bool registered = [] {
 
 }  // namespace
 
+// Google Benchmark's main; exit status 1 when an answer failed its check (checked_main.hpp).
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  if (contradictions > 0) std::fprintf(stderr, "bench_cylinder_wide_range: %d answers contradict the construction or are undecided\n", contradictions);
-  return contradictions > 0 ? 1 : 0;
+  return certcyl::bench::run_checked_benchmarks(argc, argv, contradictions, "bench_cylinder_wide_range: answers that contradict the construction or are undecided");
 }
+

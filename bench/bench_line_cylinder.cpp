@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "checked_main.hpp"
 #include "certcyl/certified/line_cylinder.hpp"
 #include "certcyl/robust/line_cylinder.hpp"
 #include "certcyl/seeds/gullotti_line_elliptic_cylinder.hpp"
@@ -279,15 +280,8 @@ void BM_certified_full_rational_input(benchmark::State& state) {
 
 // Nanoseconds of one decision on q: the median of 3 batches of 4 calls.
 double call_ns(const Query& q) {
-  std::array<double, 3> t{};
   LineStageCounter c;
-  for (double& x : t) {
-    const auto s = std::chrono::steady_clock::now();
-    for (int k = 0; k < 4; ++k) benchmark::DoNotOptimize(decide(q, c));
-    x = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - s).count() / 4;
-  }
-  std::sort(t.begin(), t.end());
-  return t[1];
+  return bench::median_call_ns([&] { return decide(q, c); });
 }
 
 // One family: Google Benchmark's mean cycling through the instances, and the distribution
@@ -390,13 +384,8 @@ BENCHMARK(BM_gullotti_gmpfr113)->Arg(0)->Arg(1);
 BENCHMARK(BM_shene<CORE::Expr>)->Arg(0)->Arg(1);
 BENCHMARK(BM_gullotti<CORE::Expr>)->Arg(0)->Arg(1);
 
-// Google Benchmark's main, and a non-zero exit status when a decision disagreed with the Gmpq
-// skeleton (the smoke run in the tests relies on it).
+// Google Benchmark's main; exit status 1 when an answer failed its check (checked_main.hpp).
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  if (disagreements > 0) std::fprintf(stderr, "bench_line_cylinder: %d decisions disagree with the Gmpq skeleton\n", disagreements);
-  return disagreements > 0 ? 1 : 0;
+  return certcyl::bench::run_checked_benchmarks(argc, argv, disagreements, "bench_line_cylinder: decisions that disagree with the Gmpq skeleton");
 }
+

@@ -31,6 +31,7 @@
 #include <random>
 #include <vector>
 
+#include "checked_main.hpp"
 #include "certcyl/certified/triangle_cylinder.hpp"
 #include "certcyl/seeds/eberly_triangle_cylinder.hpp"
 #include "near_features.hpp"
@@ -237,15 +238,8 @@ int disagreements = 0;
 
 // Nanoseconds of one decision: the median of 3 batches of 4 calls.
 double call_ns(const TriangleQuery& q) {
-  std::array<double, 3> t{};
   TriangleFilterStages st;
-  for (double& x : t) {
-    const auto s = std::chrono::steady_clock::now();
-    for (int k = 0; k < 4; ++k) benchmark::DoNotOptimize(classify_triangle_cylinder(q.t, q.c, st));
-    x = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - s).count() / 4;
-  }
-  std::sort(t.begin(), t.end());
-  return t[1];
+  return bench::median_call_ns([&] { return classify_triangle_cylinder(q.t, q.c, st); });
 }
 
 void BM_family(benchmark::State& state) {
@@ -289,13 +283,8 @@ BENCHMARK_CAPTURE(certified_certificate, near, near_inputs());
 
 BENCHMARK(BM_family)->DenseRange(0, kFamilies - 1);
 
-// Google Benchmark's main, and a non-zero exit status when a family's answer disagreed with
-// the decision in Gmpq (the smoke run in the tests relies on it).
+// Google Benchmark's main; exit status 1 when an answer failed its check (checked_main.hpp).
 int main(int argc, char** argv) {
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  if (disagreements > 0) std::fprintf(stderr, "bench_triangle_cylinder: %d answers disagree with the decision in Gmpq\n", disagreements);
-  return disagreements > 0 ? 1 : 0;
+  return certcyl::bench::run_checked_benchmarks(argc, argv, disagreements, "bench_triangle_cylinder: answers that disagree with the decision in Gmpq");
 }
+

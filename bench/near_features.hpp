@@ -1,7 +1,13 @@
 // Shared by the benchmarks' near-feature families (bench_line_cylinder, bench_triangle_cylinder):
-// the double vector helpers used to build a feature in an oriented frame before rounding.
+// the double vector helpers used to build a feature in an oriented frame before rounding, and
+// the per-instance timing.
 #pragma once
 
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
 #include <cmath>
 
 #include "certcyl/vec3.hpp"
@@ -15,6 +21,20 @@ inline Vec3<double> vcross(const Vec3<double>& a, const Vec3<double>& b) {
 inline Vec3<double> unit(const Vec3<double>& v) {
   const double n = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
   return {v.x / n, v.y / n, v.z / n};
+}
+
+// Nanoseconds of one call of f: the median of 3 batches of 4 consecutive calls (the clock's
+// resolution is coarse next to a query of a few dozen nanoseconds).
+template <class F>
+double median_call_ns(F&& f) {
+  std::array<double, 3> t{};
+  for (double& x : t) {
+    const auto s = std::chrono::steady_clock::now();
+    for (int k = 0; k < 4; ++k) benchmark::DoNotOptimize(f());
+    x = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - s).count() / 4;
+  }
+  std::sort(t.begin(), t.end());
+  return t[1];
 }
 
 }  // namespace certcyl::bench
