@@ -52,29 +52,8 @@ inline const StaticBounds& triangle_double_double_bounds() {
   return bounds;
 }
 
-// The sign policy of the double-double stage: 4 e M2^d for d = 0..14 precomputed (M2 >= 1).
-class DoubleDoubleSigns {
- public:
-  DoubleDoubleSigns(const StaticBounds& bounds, double M2) : bounds_(bounds) {
-    power_[0] = 4;
-    for (int d = 1; d < kMaxDegree + 1; ++d) power_[d] = power_[d - 1] * M2;
-  }
-
-  CGAL::Sign operator()(const DD& v, SlabTest t, SlabKind ka = SlabKind::vertex, SlabKind kb = SlabKind::vertex,
-                        SlabKind kx = SlabKind::vertex) const {
-    const StaticBounds::Entry& en = bounds_.entry(t, ka, kb, kx);
-    const double E = en.e * power_[en.degree];
-    if (v.hi() > E) return CGAL::POSITIVE;
-    if (v.hi() < -E) return CGAL::NEGATIVE;
-    throw StaticUndecided{};
-  }
-
-  static constexpr int kMaxDegree = 14;
-
- private:
-  const StaticBounds& bounds_;
-  std::array<double, kMaxDegree + 1> power_;
-};
+// The sign of a double-double value is read from its high part (the proof above).
+inline double leading_part(const DD& v) { return v.hi(); }
 
 // The window of the proof: zero, or a magnitude in [2^-24, 2^60].
 inline bool in_triangle_double_double_window(double x) {
@@ -113,7 +92,8 @@ inline std::optional<SlabDecision> double_double_decide_triangle_cylinder(const 
   std::frexp(m, &exponent);  // m < 2^exponent
   const double M2 = std::ldexp(1.0, exponent);
   try {
-    return decide_slab(in, DoubleDoubleSigns(triangle_double_double_bounds(), M2));
+    // Factor 4: the bound of the proof above.
+    return decide_slab(in, BoundedSigns<DD>(triangle_double_double_bounds(), M2, 4));
   } catch (const StaticUndecided&) {
     return std::nullopt;
   }

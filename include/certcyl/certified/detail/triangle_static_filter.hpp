@@ -162,20 +162,28 @@ inline const StaticBounds& triangle_static_bounds() {
 // Thrown when |value| <= E: the static stage cannot decide.
 struct StaticUndecided {};
 
-// The sign policy of the static stage: M2^d for d = 0..14 precomputed.
-class StaticSigns {
+// The part of a computed value a sign is read from: the value itself in double (the
+// double-double stage overloads it with the high part, triangle_double_double.hpp).
+inline double leading_part(double v) { return v; }
+
+// The sign policy of a stage with error bounds: the sign of the value when its leading part
+// exceeds factor e M2^d (factor M2^d for d = 0..14 precomputed), else StaticUndecided. The
+// static stage uses factor 1 on doubles.
+template <class NT>
+class BoundedSigns {
  public:
-  StaticSigns(const StaticBounds& bounds, double M2) : bounds_(bounds) {
-    power_[0] = 1;
+  BoundedSigns(const StaticBounds& bounds, double M2, double factor = 1) : bounds_(bounds) {
+    power_[0] = factor;
     for (int d = 1; d < kMaxDegree + 1; ++d) power_[d] = power_[d - 1] * M2;
   }
 
-  CGAL::Sign operator()(double v, SlabTest t, SlabKind ka = SlabKind::vertex, SlabKind kb = SlabKind::vertex,
+  CGAL::Sign operator()(const NT& v, SlabTest t, SlabKind ka = SlabKind::vertex, SlabKind kb = SlabKind::vertex,
                         SlabKind kx = SlabKind::vertex) const {
     const StaticBounds::Entry& en = bounds_.entry(t, ka, kb, kx);
     const double E = en.e * power_[en.degree];
-    if (v > E) return CGAL::POSITIVE;
-    if (v < -E) return CGAL::NEGATIVE;
+    const double h = leading_part(v);
+    if (h > E) return CGAL::POSITIVE;
+    if (h < -E) return CGAL::NEGATIVE;
     throw StaticUndecided{};
   }
 
@@ -185,6 +193,7 @@ class StaticSigns {
   const StaticBounds& bounds_;
   std::array<double, kMaxDegree + 1> power_;
 };
+using StaticSigns = BoundedSigns<double>;
 
 // The power of two 2^k > m, k in [kMinExponent, kMaxExponent]; nothing when m is outside the
 // range (or not a number).
