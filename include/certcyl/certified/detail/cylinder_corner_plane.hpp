@@ -87,7 +87,7 @@ class CornerPlane {
     c.Aj_exact_ = Aj;
     c.AAj_ = dot(Aj, Aj);
     for (int e = 0; e < 2; ++e) c.local(c.E_[e], c.ca_[e], c.cr_[e]);
-    c.jj_ = f(dot(Aj, Aj));
+    c.jj_ = f(c.AAj_);
     c.rj_ = f(cj.radius);
     c.u_ = c.axial_.map(f) * c.inv_axial_;
     c.e_ = w.map(f) * c.inv_radial_;
@@ -136,10 +136,12 @@ class CornerPlane {
         g1 = gain(x1);
       }
     }
-    F t = (lo + hi) / k(2);
+    F t = (lo + hi) / k(2), gt = gain(t);
     // The ends are the cap and wall normals; a maximum there is exact.
-    for (const F& end : {k(0), k(1)})
-      if (gain(end) >= gain(t)) t = end;
+    for (const F& end : {k(0), k(1)}) {
+      const F ge = gain(end);
+      if (ge >= gt) t = end, gt = ge;
+    }
     return t;
   }
 
