@@ -78,14 +78,8 @@ using bench::vcross;
 std::vector<Query> make_family(int family) {
   std::mt19937_64 rng(100 + family);
   std::uniform_real_distribution<double> u(-1, 1);
-  std::uniform_int_distribution<int> ulps(-3, 3);
   auto rv = [&] { return Vec3<double>{u(rng), u(rng), u(rng)}; };
-  auto nudge = [&](double x) {
-    const int k = ulps(rng);
-    for (int i = 0; i < std::abs(k); ++i) x = std::nextafter(x, k > 0 ? INFINITY : -INFINITY);
-    return x;
-  };
-  auto nudge3 = [&](const Vec3<double>& v) { return Vec3<double>{nudge(v.x), nudge(v.y), nudge(v.z)}; };
+  bench::UlpNudge nudge3(rng);
   std::vector<Query> out;
   for (int i = 0; i < 1024; ++i) {
     Query q;

@@ -77,13 +77,8 @@ const Inputs& near_inputs() {
     Inputs r;
     std::mt19937_64 g(54321);
     std::uniform_int_distribution<int> ulps(-2, 2), kind(0, 4), offset(-1000, 1000);
-    const auto step = [](double x, int k) {
-      for (; k > 0; --k) x = std::nextafter(x, INFINITY);
-      for (; k < 0; ++k) x = std::nextafter(x, -INFINITY);
-      return x;
-    };
     while (static_cast<int>(r.td.size()) < kInstances) {
-      const double x = step(1.0, ulps(g)), z = step(2.0, ulps(g));
+      const double x = bench::ulps_from(1.0, ulps(g)), z = bench::ulps_from(2.0, ulps(g));
       Triangle<double> t;
       switch (kind(g)) {
         case 0: t = {{Point3<double>{x, 0, 1}, {3, 0, 1}, {3, 1, 1}}}; break;       // vertex on the wall
@@ -186,14 +181,8 @@ std::vector<TriangleQuery> make_family(int family) {
   }
   std::mt19937_64 rng(200 + family);
   std::uniform_real_distribution<double> u(-1, 1);
-  std::uniform_int_distribution<int> ulps(-3, 3);
   const auto rv = [&] { return Vec3<double>{u(rng), u(rng), u(rng)}; };
-  const auto nudge = [&](double x) {
-    const int k = ulps(rng);
-    for (int i = 0; i < std::abs(k); ++i) x = std::nextafter(x, k > 0 ? INFINITY : -INFINITY);
-    return x;
-  };
-  const auto nudge3 = [&](const Vec3<double>& v) { return Vec3<double>{nudge(v.x), nudge(v.y), nudge(v.z)}; };
+  bench::UlpNudge nudge3(rng);
   const auto pos = [&] { return 0.25 + std::fabs(u(rng)); };
   while (static_cast<int>(out.size()) < kInstances) {
     const Vec3<double> p0 = rv(), p1 = p0 + rv() * 2.0;
