@@ -94,6 +94,13 @@ std::size_t query_count(const std::vector<const Rows*>& operands, const std::str
   return many ? many->rows() : 1;
 }
 
+unsigned thread_count(long long threads, const std::string& function) {
+  if (threads < 0)
+    throw py::value_error(function + ": threads: expected 0 (every core) or a positive number of threads, got " +
+                          std::to_string(threads));
+  return static_cast<unsigned>(std::min<long long>(threads, 1 << 16));
+}
+
 void for_each_row(std::size_t n, unsigned threads, const std::string& function, const std::function<void(std::size_t)>& answer) {
   struct Failure {
     std::size_t row;

@@ -69,6 +69,10 @@ class Rows {
 // ValueError naming the operands that disagree.
 std::size_t query_count(const std::vector<const Rows*>& operands, const std::string& function);
 
+// The `threads` argument of a batch function: 0 (every core) or a positive count; a negative
+// count is a ValueError naming the function and the argument.
+unsigned thread_count(long long threads, const std::string& function);
+
 // Answers rows [0, n) with answer(i) on `threads` threads (0: every core), each a contiguous
 // chunk, with the GIL released. A row whose operands the library rejects (InvalidInput) stops
 // its chunk; the smallest such row is raised as certcyl.InvalidInput ("<function>: row <i>:

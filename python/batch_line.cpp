@@ -132,10 +132,10 @@ void bind_family(py::module_& m, const std::string& suffix) {
     const bool ray = kind == "ray";
     m.def(
         name.c_str(),
-        [name, width, solid_of, ray](py::handle origins, py::handle directions, py::handle cylinders, unsigned threads, bool gap) {
+        [name, width, solid_of, ray](py::handle origins, py::handle directions, py::handle cylinders, long long threads, bool gap) {
           const Rows o(origins, "origins", 3, name), d(directions, "directions", 3, name), c(cylinders, "cylinders", width, name);
-          if (ray) return line_batch(name, o, d, c, threads, gap, line_row<Ray>, solid_of(c));
-          return line_batch(name, o, d, c, threads, gap, line_row<Line>, solid_of(c));
+          if (ray) return line_batch(name, o, d, c, thread_count(threads, name), gap, line_row<Ray>, solid_of(c));
+          return line_batch(name, o, d, c, thread_count(threads, name), gap, line_row<Line>, solid_of(c));
         },
         py::arg("origins"), py::arg("directions"), py::arg("cylinders"), py::kw_only(), py::arg("threads") = 1,
         py::arg("gap") = true, line_doc(ray ? "rays" : "lines", elliptic, lines, param, false).c_str());
@@ -143,9 +143,9 @@ void bind_family(py::module_& m, const std::string& suffix) {
   const std::string name = "segment" + suffix;
   m.def(
       name.c_str(),
-      [name, width, solid_of](py::handle p0s, py::handle p1s, py::handle cylinders, unsigned threads, bool gap) {
+      [name, width, solid_of](py::handle p0s, py::handle p1s, py::handle cylinders, long long threads, bool gap) {
         const Rows a(p0s, "p0s", 3, name), b(p1s, "p1s", 3, name), c(cylinders, "cylinders", width, name);
-        return line_batch(name, a, b, c, threads, gap, line_row<Segment>, solid_of(c));
+        return line_batch(name, a, b, c, thread_count(threads, name), gap, line_row<Segment>, solid_of(c));
       },
       py::arg("p0s"), py::arg("p1s"), py::arg("cylinders"), py::kw_only(), py::arg("threads") = 1, py::arg("gap") = true,
       line_doc("segments", elliptic, "p0s, p1s: N x 3 (X = p0 + t (p1 - p0)).", "(t in [0, 1] from p0 to p1)", true).c_str());

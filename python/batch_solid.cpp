@@ -108,9 +108,10 @@ Raises ValueError on a wrong shape or dtype, certcyl.InvalidInput on a row the l
 void bind_solid_batches(py::module_& m) {
   m.def(
       "point_cylinder",
-      [](py::handle points, py::handle cylinders, unsigned threads, bool gap) {
+      [](py::handle points, py::handle cylinders, long long threads, bool gap) {
         const std::string q = "point_cylinder";
-        return point_batch<Cylinder<double>>(q, Rows(points, "points", 3, q), Rows(cylinders, "cylinders", 7, q), threads, gap);
+        return point_batch<Cylinder<double>>(q, Rows(points, "points", 3, q), Rows(cylinders, "cylinders", 7, q),
+                                             thread_count(threads, q), gap);
       },
       py::arg("points"), py::arg("cylinders"), py::kw_only(), py::arg("threads") = 1, py::arg("gap") = true,
       (std::string(R"(Certified position of points against solid circular cylinders, one query per row.
@@ -123,10 +124,10 @@ squared distance to the axis in units of the radius squared (negative outside).)
           .c_str());
   m.def(
       "point_elliptic_cylinder",
-      [](py::handle points, py::handle cylinders, unsigned threads, bool gap) {
+      [](py::handle points, py::handle cylinders, long long threads, bool gap) {
         const std::string q = "point_elliptic_cylinder";
-        return point_batch<EllipticCylinder<double>>(q, Rows(points, "points", 3, q), Rows(cylinders, "cylinders", 12, q), threads,
-                                                     gap);
+        return point_batch<EllipticCylinder<double>>(q, Rows(points, "points", 3, q), Rows(cylinders, "cylinders", 12, q),
+                                                     thread_count(threads, q), gap);
       },
       py::arg("points"), py::arg("cylinders"), py::kw_only(), py::arg("threads") = 1, py::arg("gap") = true,
       (std::string(R"(Certified position of points against solid elliptic cylinders, one query per row.
@@ -137,9 +138,9 @@ cylinder's unit frame (x^2 + y^2 <= 1, 0 <= z <= 1).)") +
           .c_str());
   m.def(
       "triangle_cylinder",
-      [](py::handle triangles, py::handle cylinders, unsigned threads, bool gap) {
+      [](py::handle triangles, py::handle cylinders, long long threads, bool gap) {
         const std::string q = "triangle_cylinder";
-        return triangle_batch(Rows(triangles, "triangles", 9, q), Rows(cylinders, "cylinders", 7, q), threads, gap);
+        return triangle_batch(Rows(triangles, "triangles", 9, q), Rows(cylinders, "cylinders", 7, q), thread_count(threads, q), gap);
       },
       py::arg("triangles"), py::arg("cylinders"), py::kw_only(), py::arg("threads") = 1, py::arg("gap") = true,
       (std::string(R"(Certified triangle against solid circular cylinder, one query per row.
@@ -151,9 +152,9 @@ study's depth margin of the triangle (negative separated, zero touching, positiv
           .c_str());
   m.def(
       "cylinder_cylinder",
-      [](py::handle a, py::handle b, unsigned threads, bool gap) {
+      [](py::handle a, py::handle b, long long threads, bool gap) {
         const std::string q = "cylinder_cylinder";
-        return pair_batch(Rows(a, "a", 7, q), Rows(b, "b", 7, q), threads, gap);
+        return pair_batch(Rows(a, "a", 7, q), Rows(b, "b", 7, q), thread_count(threads, q), gap);
       },
       py::arg("a"), py::arg("b"), py::kw_only(), py::arg("threads") = 1, py::arg("gap") = true,
       (std::string(R"(Certified pairs of solid circular cylinders, one query per row.

@@ -237,6 +237,8 @@ def judge(function, query="ray_cylinder", size="small", *, vectorized=False, see
         raise ValueError(f"judge: query: expected one of {', '.join(JUDGE_QUERIES)}, got {query!r}")
     if not callable(function):
         raise ValueError(f"judge: function: not callable: {function!r}")
+    if int(threads) < 0:
+        raise ValueError(f"judge: threads: expected 0 (every core) or a positive number of threads, got {threads}")
     label = method or getattr(function, "__qualname__", None) or "python"
     summary, folder = _certcyl._judge(function, query, str(size), int(seed), list(families), bool(vectorized), label,
                                       str(out), str(name), int(threads))

@@ -153,6 +153,116 @@ class SameAsTheCommand(unittest.TestCase):
                     np.testing.assert_array_equal([r.t_in[i], r.t_out[i]], ends, c["id"])
                     self.assertEqual(r.gap[i].tolist(), c["meta"]["gap"], c["id"])
 
+    def answers_of(self, lines):
+        """`certcyl query --brief`'s answers to the query lines (dicts)."""
+        text = "".join(json.dumps(l) + "\n" for l in lines)
+        return [json.loads(l) for l in command(["query", "--brief"], text).splitlines()]
+
+    def assertSameAsCommand(self, r, lines, ids, intervals=True):
+        answers = self.answers_of(lines)
+        self.assertEqual(len(answers), len(lines))
+        for i, q in enumerate(answers):
+            self.assertNotIn("error", q, ids[i])
+            self.assertEqual(r.answer[i], CODES[q["answer"]], ids[i])
+            if intervals:
+                ends = q["interval"] or [math.nan, math.nan]
+                np.testing.assert_array_equal([r.t_in[i], r.t_out[i]], ends, ids[i])
+        return answers
+
+    def test_elliptic_line_ray_and_segment_queries(self):
+        # The study's elliptic cases (a line tangent to the wall at a few ulps, rim grazes) as
+        # lines, as rays from the same origin, as rays reversed, and as segments from the origin
+        # to origin + 2 direction and back: the module's answers and intervals are the command's.
+        cases = [json.loads(l) for l in command(["cases", "--query", "line_elliptic_cylinder", "--size", "tiny"], "").splitlines()]
+        self.assertGreater(len(cases), 10)
+        e_of = lambda e: e["base"] + e["a"] + e["b"] + e["c"]
+        ell = np.array([e_of(c["elliptic_cylinder"]) for c in cases])
+        o = np.array([c["line"]["origin"] for c in cases])
+        d = np.array([c["line"]["direction"] for c in cases])
+        ids = [c["id"] for c in cases]
+        r = certcyl.line_elliptic_cylinder(o, d, ell)
+        self.assertSameAsCommand(r, cases, ids)
+        for i, c in enumerate(cases):
+            self.assertEqual(r.answer[i], CODES[c["meta"]["certified"]], c["id"])
+            self.assertEqual(r.gap[i].tolist(), c["meta"]["gap"], c["id"])
+        elliptic = lambda i: dict(zip(("base", "a", "b", "c"), (ell[i, k:k + 3].tolist() for k in (0, 3, 6, 9))))
+        for sign in (1, -1):
+            r = certcyl.ray_elliptic_cylinder(o, sign * d, ell)
+            lines = [{"id": i, "query": "ray_elliptic_cylinder", "ray": {"origin": o[i].tolist(), "direction": (sign * d[i]).tolist()},
+                      "elliptic_cylinder": elliptic(i)} for i in range(len(cases))]
+            self.assertSameAsCommand(r, lines, ids)
+        far = o + 2 * d
+        for p0, p1 in ((o, far), (far, o)):
+            r = certcyl.segment_elliptic_cylinder(p0, p1, ell)
+            lines = [{"id": i, "query": "segment_elliptic_cylinder", "segment": {"p0": p0[i].tolist(), "p1": p1[i].tolist()},
+                      "elliptic_cylinder": elliptic(i)} for i in range(len(cases))]
+            self.assertSameAsCommand(r, lines, ids)
+        # Random rows, one elliptic cylinder broadcast: a mix of answers, the command's again.
+        rng = np.random.default_rng(21)
+        e = np.array([0.5, -0.25, -1, 1.5, 0.25, 0, -0.5, 0.75, 0.125, 0, 0.25, 2])
+        o, d = rng.uniform(-3, 3, (200, 3)), rng.uniform(-1, 1, (200, 3))
+        for query, member, first, second in (("line_elliptic_cylinder", "line", "origin", "direction"),
+                                             ("ray_elliptic_cylinder", "ray", "origin", "direction"),
+                                             ("segment_elliptic_cylinder", "segment", "p0", "p1")):
+            with self.subTest(query=query):
+                r = getattr(certcyl, query)(o, d, e, threads=2)
+                lines = [{"id": i, "query": query, member: {first: o[i].tolist(), second: d[i].tolist()},
+                          "elliptic_cylinder": dict(zip(("base", "a", "b", "c"), (e[k:k + 3].tolist() for k in (0, 3, 6, 9))))}
+                         for i in range(len(o))]
+                self.assertSameAsCommand(r, lines, list(range(len(o))))
+                self.assertTrue({S, O} <= set(r.answer.tolist()), query)
+
+    def test_point_queries(self):
+        # Points on the boundary by construction (the ends of the axis: cap centres; for elliptic
+        # cylinders base + a, a rim point), inside (the middle of the axis), the entry points of
+        # the study's line cases (rounded: a few ulps from the wall), the lines' origins, and
+        # random points: the command's answers.
+        cases = self.cases("line_cylinder")
+        points, cylinders = [], []
+        for c in cases:
+            cyl = c["cylinder"]
+            p0, p1 = np.array(cyl["p0"]), np.array(cyl["p1"])
+            r = certcyl.line_cylinder(c["line"]["origin"], c["line"]["direction"], cyl["p0"] + cyl["p1"] + [cyl["radius"]])
+            near = [] if math.isnan(r.t_in[0]) else [np.array(c["line"]["origin"]) + r.t_in[0] * np.array(c["line"]["direction"])]
+            for x in [p0, p1, (p0 + p1) / 2, np.array(c["line"]["origin"])] + near:
+                points.append(x)
+                cylinders.append(cyl["p0"] + cyl["p1"] + [cyl["radius"]])
+        rng = np.random.default_rng(22)
+        for _ in range(100):
+            points.append(rng.uniform(-2, 2, 3))
+            cylinders.append([0, 0, -1, 0.25, 0.5, 1.5, 1.25])
+        points, cylinders = np.array(points), np.array(cylinders)
+        r = certcyl.point_cylinder(points, cylinders)
+        lines = [{"id": i, "query": "point_cylinder", "point": points[i].tolist(),
+                  "cylinder": {"p0": cylinders[i, 0:3].tolist(), "p1": cylinders[i, 3:6].tolist(), "radius": cylinders[i, 6]}}
+                 for i in range(len(points))]
+        self.assertSameAsCommand(r, lines, list(range(len(points))), intervals=False)
+        self.assertEqual(set(r.answer.tolist()), {S, T, O})
+        self.assertEqual(r.answer[0], T)  # p0 of the first case: the centre of a cap
+        # The gap's sign is the answer's.
+        self.assertTrue(np.all(r.gap[r.answer == O, 0] > 0) and np.all(r.gap[r.answer == S, 1] < 0))
+        self.assertTrue(np.all(r.gap[r.answer == T] == 0))
+
+        cases = [json.loads(l) for l in command(["cases", "--query", "line_elliptic_cylinder", "--size", "tiny"], "").splitlines()]
+        points, cylinders = [], []
+        for c in cases:
+            e = c["elliptic_cylinder"]
+            row = e["base"] + e["a"] + e["b"] + e["c"]
+            base, a, cz = np.array(e["base"]), np.array(e["a"]), np.array(e["c"])
+            r = certcyl.line_elliptic_cylinder(c["line"]["origin"], c["line"]["direction"], row)
+            near = [] if math.isnan(r.t_in[0]) else [np.array(c["line"]["origin"]) + r.t_in[0] * np.array(c["line"]["direction"])]
+            for x in [base, base + a, base + cz / 2, np.array(c["line"]["origin"])] + near:
+                points.append(x)
+                cylinders.append(row)
+        points, cylinders = np.array(points), np.array(cylinders)
+        r = certcyl.point_elliptic_cylinder(points, cylinders)
+        elliptic = lambda i: dict(zip(("base", "a", "b", "c"), (cylinders[i, k:k + 3].tolist() for k in (0, 3, 6, 9))))
+        lines = [{"id": i, "query": "point_elliptic_cylinder", "point": points[i].tolist(), "elliptic_cylinder": elliptic(i)}
+                 for i in range(len(points))]
+        self.assertSameAsCommand(r, lines, list(range(len(points))), intervals=False)
+        self.assertEqual(set(r.answer.tolist()), {S, T, O})
+        self.assertEqual(r.answer[0], T)  # base: the centre of the bottom cap
+
     def test_triangles_and_pairs(self):
         cases = self.cases("triangle_cylinder")
         tri = np.array([c["triangle"] for c in cases])
@@ -185,6 +295,19 @@ class BadInput(unittest.TestCase):
             certcyl.triangle_cylinder(np.zeros((2, 4, 3)), CYLINDER)
         with self.assertRaisesRegex(ValueError, r"cylinder_cylinder: a: dtype object is not a real dtype"):
             certcyl.cylinder_cylinder(object(), CYLINDER)
+
+    def test_a_negative_thread_count_is_a_value_error(self):
+        for function, operands in ((certcyl.ray_cylinder, ([0, 0, 0], [1, 0, 0], CYLINDER)),
+                                   (certcyl.segment_elliptic_cylinder, ([0, 0, 0], [1, 0, 0], np.r_[0, 0, 0, np.eye(3).ravel()])),
+                                   (certcyl.point_cylinder, ([0, 0, 0], CYLINDER)),
+                                   (certcyl.triangle_cylinder, (np.eye(3), CYLINDER)),
+                                   (certcyl.cylinder_cylinder, (CYLINDER, CYLINDER))):
+            with self.assertRaisesRegex(ValueError, function.__name__ + r": threads: expected 0 \(every core\) or a positive "
+                                        r"number of threads, got -1"):
+                function(*operands, threads=-1)
+        self.assertEqual(certcyl.point_cylinder([0, 0, 1], CYLINDER, threads=0).answer.tolist(), [O])
+        with self.assertRaisesRegex(ValueError, r"judge: threads: .* got -2"):
+            certcyl.judge(lambda *a: 0, "line_cylinder", "tiny", threads=-2)
 
     def test_rows_the_library_rejects_name_the_row_and_the_field(self):
         origins = np.array([[-3, 0, 1], [-3, np.nan, 1]])
