@@ -13,11 +13,13 @@ and paper/ share.
   split_method(m)         "shene_as_written/double" -> ("shene_as_written", "double")
   method_label(m)         the same for a reader: "shene (as written), double"
   QUERY_TITLES            query name -> short title
+  html_table(header, rows)  an HTML table, cells escaped (the index page of a results folder)
 Pure standard library (no numpy, no matplotlib), so that any script may import it.
 """
 import csv
 import hashlib
 import math
+from html import escape
 
 READ = []  # every file read through read_csv or note_read, in order
 
@@ -96,3 +98,17 @@ def method_label(m):
     if base.endswith("_as_written"):
         base = base[: -len("_as_written")] + " (as written)"
     return f"{base}, {nt.replace('_', ' ')}" if nt else base
+
+
+def html_table(header, rows, row_classes=None, numeric=()):
+    """An HTML <table> (a string) of `header` (column names) and `rows` (lists of cells), every
+    cell escaped; row_classes[i] (optional) is the class of row i, and the columns named in
+    `numeric` are right-aligned (class "num")."""
+    attrs = [' class="num"' if h in numeric else "" for h in header]
+    out = ["<table>", "<thead><tr>" + "".join(f"<th{a}>{escape(str(h))}</th>" for a, h in zip(attrs, header)) + "</tr></thead>", "<tbody>"]
+    for k, row in enumerate(rows):
+        cls = row_classes[k] if row_classes else ""
+        tr = f'<tr class="{escape(cls)}">' if cls else "<tr>"
+        out.append(tr + "".join(f"<td{a}>{escape(str(c))}</td>" for a, c in zip(attrs, row)) + "</tr>")
+    out += ["</tbody>", "</table>"]
+    return "\n".join(out)

@@ -1,33 +1,41 @@
 #!/usr/bin/python3
-"""Figures of the robustness study, read from the CSV files of a results folder only.
+"""Figures of the robustness study, read from the CSV files of a results folder only, and the page
+that presents them.
 
     /usr/bin/python3 experiments/plot_study.py results/<name> [--out DIR]
 
-Writes PNG and PDF into results/<name>/figures/ (or DIR):
+Writes PNG and PDF into results/<name>/figures/ (or DIR), each sized to fit a page:
   disagreement_<query>   false positives + false negatives per method and family (heat map)
-  gap_rate_<query>       disagreement rate against the certified signed gap, log-binned
-  pareto                 median ns per query against disagreement rate, per query
+  gap_rate_<query>       disagreement rate against the certified gap, one small panel per method
+                         that gave a wrong answer (at most 16), separated and overlapping sides
+  pareto                 median ns per query against disagreement rate, per query, every method;
+                         only the methods on the Pareto front are labelled
   pareto_compact         the same without sweeps and the extra MPFR precisions, colour by
                          algorithm, marker by number type (legible at a page's width)
   gap_rate_overview      disagreement rate against |gap| for the methods in hardware precision,
                          line queries pooled, triangles, cylinder pairs
-  t_error                line queries: error of the entry parameter t in ulps, per method
+  t_error                line queries: error of the entry parameter t in ulps, one panel per query
+                         (median, 90th and 99th percentiles, maximum)
   pareto_t_error         line queries: median ns against the 99th percentile of the t error
-  map_<name>             failure maps: each method's answer on the ulp grid, disagreements marked
+  map_<name>             failure maps: each method's answer on the ulp grid, wrong cells marked
   map_compact_<name>     the same with at most 8 panels (methods with identical answers on every
                          cell share a panel), legible at a page's width
   manifest.json          the SHA-256 of every file read (relative to the results folder) and of
                          every figure written, so a consumer (the paper) can tell whether a figure
                          comes from the study outputs it sits beside
+and index.html, the page to start from: the summary table (summary.csv), then every figure with
+a sentence on how to read it; static HTML, no script, no external resource. It is written to
+results/<name>/index.html (with --out DIR: DIR/index.html), its links relative to it.
+One line per figure on standard error as it is written.
 Needs matplotlib and numpy (Debian python3-matplotlib, python3-numpy).
 """
-import csv
-import hashlib
 import json
 import math
 import os
 import sys
+import time
 from collections import defaultdict
+from html import escape
 
 import matplotlib
 
@@ -35,6 +43,10 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.colors import ListedColormap  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import certcyl_results as cr  # noqa: E402
+from certcyl_results import QUERY_TITLES, fnum, read_csv, sha256  # noqa: E402
 
 KIND_COLOURS = {
     "certified": "black",
@@ -45,40 +57,35 @@ KIND_COLOURS = {
     "peer": "tab:orange",
 }
 
+# A page: no figure is wider or taller than this (inches), so each prints on A4 or Letter.
+PAGE_WIDTH, PAGE_HEIGHT = 7.8, 10.0
 
-READ = []  # every input file read, for the manifest
-WRITTEN = []  # every figure written
-
-
-def sha256(path):
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
+FIGURES = []  # (name, caption) of every figure written, in order
+WRITTEN = []  # every file written
+START = time.monotonic()
 
 
-def read_csv(path):
-    READ.append(path)
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def save(fig, out, name, rect=None):
-    fig.tight_layout(rect=rect)
+def save(fig, out, name, caption, rect=None, dpi=110, tight=True):
+    """Writes name.png and name.pdf; `caption` is the sentence on how to read it (index.html)."""
+    if tight:
+        fig.tight_layout(rect=rect)
+    width, height = fig.get_size_inches()
+    assert width <= PAGE_WIDTH + 1e-9 and height <= PAGE_HEIGHT + 1e-9, f"{name}: {width:.1f} x {height:.1f} in"
     for ext in ("png", "pdf"):
         path = os.path.join(out, f"{name}.{ext}")
         # A fixed creation date keeps the PDF a function of the data (matplotlib honours it).
         meta = {"CreationDate": None} if ext == "pdf" else None
-        fig.savefig(path, dpi=110, metadata=meta)
+        fig.savefig(path, dpi=dpi, metadata=meta)
         WRITTEN.append(path)
     plt.close(fig)
+    FIGURES.append((name, caption))
+    print(f"plot_study: {len(FIGURES)} figures, {name}.png and .pdf ({time.monotonic() - START:.1f} s)", file=sys.stderr, flush=True)
 
 
 def write_manifest(folder, out):
     manifest = {
         "generator": "experiments/plot_study.py",
-        "inputs": {os.path.relpath(p, folder): sha256(p) for p in sorted(set(READ))},
+        "inputs": {os.path.relpath(p, folder): sha256(p) for p in sorted(set(cr.READ))},
         "outputs": {os.path.relpath(p, out): sha256(p) for p in sorted(set(WRITTEN))},
     }
     with open(os.path.join(out, "manifest.json"), "w") as f:
@@ -86,10 +93,34 @@ def write_manifest(folder, out):
         f.write("\n")
 
 
-def fnum(s):
-    if s == "" or s is None:
-        return math.nan
-    return float(s)
+def front(points):
+    """The Pareto front of (cost, error, ...) tuples: no other point is both cheaper and at most
+    as wrong; sorted by cost."""
+    return sorted(p for p in points if not any(o[0] < p[0] and o[1] <= p[1] for o in points if o is not p))
+
+
+def label_front(ax, pts, floor=None):
+    """Names the points `pts` ((x, y, label), drawn at max(y, floor)) beside them, to the right
+    on the left part of the axes and to the left on the right part, one name per line from the
+    highest point down (a name pushed below its point is joined to it by a thin line), so that
+    no two names overlap. Call after the axes' scales and limits are final."""
+    ax.get_xlim()
+    ax.get_ylim()
+    fig = ax.figure
+    step = 7.0 / (ax.get_position().height * fig.get_size_inches()[1] * 72)  # a 5 pt line and a gap
+    to_axes = ax.transAxes.inverted()
+    items = []
+    for x, y, label in pts:
+        y = y if floor is None else max(y, floor)
+        fx, fy = to_axes.transform(ax.transData.transform((x, y)))
+        items.append((fy, fx, x, y, label))
+    last = None
+    for fy, fx, x, y, label in sorted(items, key=lambda t: -t[0]):
+        ty = fy + 0.03 if last is None else min(fy + 0.03, last - step)
+        last = ty
+        right = fx > 0.6
+        ax.annotate(label, (x, y), xytext=(fx - 0.03 if right else fx + 0.03, ty), textcoords="axes fraction", fontsize=5,
+                    ha="right" if right else "left", va="center", arrowprops={"arrowstyle": "-", "color": "grey", "lw": 0.4})
 
 
 def disagreement_tables(families, out):
@@ -107,17 +138,23 @@ def disagreement_tables(families, out):
             bad = int(r["false_positive"]) + int(r["false_negative"])
             count[i, j] = bad
             rate[i, j] = bad / n if n > 0 else np.nan
-        fig, ax = plt.subplots(figsize=(1.0 + 0.75 * len(fams), 0.8 + 0.26 * len(methods)))
+        width = min(PAGE_WIDTH, 2.6 + 0.42 * len(fams))
+        height = min(PAGE_HEIGHT, 1.6 + 0.15 * len(methods))
+        fig, ax = plt.subplots(figsize=(width, height))
         im = ax.imshow(rate, cmap="Reds", vmin=0, vmax=max(0.05, np.nanmax(rate) if np.isfinite(rate).any() else 1), aspect="auto")
-        ax.set_xticks(range(len(fams)), fams, rotation=45, ha="right", fontsize=8)
-        ax.set_yticks(range(len(methods)), methods, fontsize=7)
+        ax.set_xticks(range(len(fams)), fams, rotation=45, ha="right", fontsize=6)
+        ax.set_yticks(range(len(methods)), methods, fontsize=5.5)
         for i in range(len(methods)):
             for j in range(len(fams)):
                 if count[i, j]:
-                    ax.text(j, i, str(count[i, j]), ha="center", va="center", fontsize=6)
-        ax.set_title(f"{query}: false positives + false negatives (count; colour: rate)")
-        fig.colorbar(im, ax=ax, shrink=0.6)
-        save(fig, out, f"disagreement_{query}")
+                    ax.text(j, i, str(count[i, j]), ha="center", va="center", fontsize=5)
+        ax.set_title(f"{query}: false positives + false negatives\n(number in the cell: count; colour: rate)", fontsize=7)
+        cb = fig.colorbar(im, ax=ax, shrink=0.6)
+        cb.ax.tick_params(labelsize=6)
+        save(fig, out, f"disagreement_{query}",
+             f"One row per method and one column per hard-case family of the {QUERY_TITLES.get(query, query)} query: the number "
+             "in a cell counts the answers that disagree with the certified one (false positives plus false negatives), the "
+             "colour is that count's share of the decided answers; an empty white cell is a method without a wrong answer there.")
 
 
 def gap_bin(lo, hi):
@@ -141,15 +178,21 @@ def gap_rate(rows, out):
         cell = by_query[r["query"]][r["method"]][b]
         cell[0] += 1
         cell[1] += r["outcome"] in ("false_positive", "false_negative")
+    sides = ((-1, "tab:blue", "o", "separated side (gap < 0)"), (1, "tab:orange", "s", "overlapping side (gap > 0)"))
     for query, methods in by_query.items():
         wrong = [m for m, bins in methods.items() if any(c[1] for c in bins.values())]
         if not wrong:
             continue
-        wrong.sort(key=lambda m: -sum(c[1] for c in methods[m].values()))
-        fig, axes = plt.subplots(1, 2, figsize=(12, 4.5), sharey=True)
-        for side, ax in zip((-1, 1), axes):
-            for m in wrong[:14]:
-                bins = methods[m]
+        wrong.sort(key=lambda m: (-sum(c[1] for c in methods[m].values()), m))
+        shown = wrong[:16]
+        cols = 4
+        rn = math.ceil(len(shown) / cols)
+        height = 1.45 * rn + 1.1
+        fig, axes = plt.subplots(rn, cols, figsize=(PAGE_WIDTH, height), sharex=True, sharey=True, squeeze=False)
+        fig.subplots_adjust(left=0.08, right=0.99, top=1 - 0.75 / height, bottom=0.45 / height, wspace=0.08, hspace=0.45)
+        for ax, m in zip(axes.flat, shown):
+            bins = methods[m]
+            for side, colour, marker, label in sides:
                 xs, ys = [], []
                 for b, (n, bad) in sorted(bins.items()):
                     if b == 0 or (b > 0) != (side > 0) or n == 0:
@@ -157,21 +200,40 @@ def gap_rate(rows, out):
                     xs.append(abs(b) - 21)
                     ys.append(bad / n)
                 if xs:
-                    ax.plot(xs, ys, marker="o", ms=3, label=m)
-            ax.set_xlabel("log10 of the certified lower bound of |gap| (upper edge of bin)")
-            ax.set_title(("separated side (gap < 0)" if side < 0 else "overlapping side (gap > 0)"))
+                    ax.plot(xs, ys, marker=marker, ms=2.5, lw=0.9, color=colour)
+            ax.set_title(m, fontsize=6)
+            ax.set_ylim(-0.05, 1.05)
+            ax.set_xlim(-21, 3)
+            ax.tick_params(labelsize=6)
             ax.grid(alpha=0.3)
-        axes[0].set_ylabel("disagreement rate (FP + FN)")
-        axes[1].legend(fontsize=7, loc="upper right")
-        fig.suptitle(f"{query}: disagreement rate against the certified signed gap")
-        save(fig, out, f"gap_rate_{query}")
+        for k, ax in enumerate(axes.flat):
+            if k >= len(shown):
+                ax.axis("off")
+            elif k + cols < len(shown):
+                ax.tick_params(labelbottom=False)
+            else:
+                ax.tick_params(labelbottom=True)
+        fig.supxlabel("$\\log_{10}$ of the certified gap's bound nearest 0, $|$gap$|$ (upper edge of bin)", fontsize=7, y=0.01)
+        fig.supylabel("disagreement rate (FP + FN)", fontsize=7)
+        handles = [plt.Line2D([], [], color=c, marker=mk, ms=3, lw=0.9, label=label) for _, c, mk, label in sides]
+        fig.legend(handles=handles, loc="upper center", ncol=2, fontsize=6.5, frameon=False, bbox_to_anchor=(0.5, 1 - 0.3 / height))
+        more = f" (the {len(shown)} of {len(wrong)} with most wrong answers)" if len(wrong) > len(shown) else ""
+        fig.suptitle(f"{query}: disagreement rate against the certified signed gap, per method with a wrong answer{more}",
+                     fontsize=7.5, y=1 - 0.05 / height, va="top")
+        save(fig, out, f"gap_rate_{query}",
+             f"One panel per method that gave a wrong answer to the {QUERY_TITLES.get(query, query)} query (most wrong answers first): "
+             "each point is the share of wrong answers among the instances whose certified gap lies in a power-of-ten bin, blue on "
+             "the separated side and orange on the overlapping side, so a method that fails only near a degeneracy has points only "
+             "at the left; a bin with few instances jumps between 0 and 1.",
+             tight=False)
 
 
 def pareto(summary, out):
     queries = sorted({r["query"] for r in summary})
     cols = 3
     rows_n = math.ceil(len(queries) / cols)
-    fig, axes = plt.subplots(rows_n, cols, figsize=(6 * cols, 4.6 * rows_n), squeeze=False)
+    fig, axes = plt.subplots(rows_n, cols, figsize=(PAGE_WIDTH, 2.7 * rows_n + 0.8), squeeze=False)
+    floor = 1e-4
     for ax, q in zip(axes.flat, queries):
         pts = []
         for r in summary:
@@ -181,26 +243,33 @@ def pareto(summary, out):
             if not (ns > 0):
                 continue
             pts.append((ns, rate, r["method"], r["kind"]))
-        floor = 1e-4
         for ns, rate, m, kind in pts:
-            ax.scatter(ns, max(rate, floor), color=KIND_COLOURS.get(kind, "grey"), s=18)
-            ax.annotate(m, (ns, max(rate, floor)), fontsize=5.5, xytext=(2, 2), textcoords="offset points")
-        # Pareto front: no other method is both faster and at most as wrong.
-        front = sorted(p for p in pts if not any(o[0] < p[0] and o[1] <= p[1] for o in pts if o is not p))
-        if front:
-            ax.step([p[0] for p in front], [max(p[1], floor) for p in front], where="post", color="grey", lw=0.8)
+            ax.scatter(ns, max(rate, floor), color=KIND_COLOURS.get(kind, "grey"), s=9, linewidths=0)
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel("median ns per query")
-        ax.set_ylabel(f"disagreement rate (0 drawn at {floor:g})")
-        ax.set_title(q)
+        ax.set_ylim(floor / 2, 1.5)
+        # Pareto front: no other method is both faster and at most as wrong; only it is named.
+        best = front(pts)
+        if best:
+            ax.step([p[0] for p in best], [max(p[1], floor) for p in best], where="post", color="grey", lw=0.7, zorder=0)
+            label_front(ax, [(p[0], p[1], p[2]) for p in best], floor)
+        ax.axhline(floor, color="grey", lw=0.5, ls=":")
+        ax.set_xlabel("median ns per query", fontsize=6.5)
+        ax.set_ylabel(f"disagreement rate (0 drawn at {floor:g})", fontsize=6.5)
+        ax.set_title(QUERY_TITLES.get(q, q), fontsize=7.5)
+        ax.tick_params(labelsize=6)
         ax.grid(alpha=0.3)
     for ax in list(axes.flat)[len(queries):]:
         ax.axis("off")
-    handles = [plt.Line2D([], [], color=c, marker="o", ls="", label=k) for k, c in KIND_COLOURS.items()]
-    fig.legend(handles=handles, loc="lower right", fontsize=8)
-    fig.suptitle("speed against error (per query, every method)")
-    save(fig, out, "pareto")
+    handles = [plt.Line2D([], [], color=c, marker="o", ls="", ms=4, label=k) for k, c in KIND_COLOURS.items()]
+    handles.append(plt.Line2D([], [], color="grey", lw=0.7, label="Pareto front (its methods named)"))
+    fig.legend(handles=handles, loc="lower center", ncol=7, fontsize=6, frameon=False)
+    fig.suptitle("speed against error (per query, every method)", fontsize=8)
+    save(fig, out, "pareto",
+         "One panel per query, one dot per method, coloured by kind: further left is faster, lower is right more often (a rate "
+         "of 0 is drawn on the dotted line); the grey staircase joins the methods no other method beats on both speed and error, "
+         "and only those are named.",
+         rect=(0, 0.05, 1, 1))
 
 
 ALGO_COLOURS = {
@@ -211,9 +280,6 @@ ALGO_COLOURS = {
 }
 NT_MARKERS = {"exact": "X", "double": "o", "long_double": "s", "interval": "^", "gmpfr<113>": "D",
               "core_expr": "*", "float": "P"}
-QUERY_TITLES = {"line_cylinder": "line", "ray_cylinder": "ray", "segment_cylinder": "segment",
-                "line_elliptic_cylinder": "line, elliptic cylinder", "triangle_cylinder": "triangle",
-                "cylinder_cylinder": "cylinder pair"}
 
 
 def pareto_compact(summary, out):
@@ -262,13 +328,10 @@ def pareto_compact(summary, out):
                     for a in ALGO_COLOURS if a in used_algos]
     nt_handles = [plt.Line2D([], [], color="grey", marker=m, ls="", ms=5, label=n) for n, m in NT_MARKERS.items() if n in used_nts]
     fig.legend(handles=algo_handles + nt_handles, loc="lower center", ncol=7, fontsize=6.2, frameon=False)
-    fig.tight_layout(rect=(0, 0.1, 1, 1))
-    name = "pareto_compact"
-    for ext in ("png", "pdf"):
-        path = os.path.join(out, f"{name}.{ext}")
-        fig.savefig(path, dpi=150, metadata={"CreationDate": None} if ext == "pdf" else None)
-        WRITTEN.append(path)
-    plt.close(fig)
+    save(fig, out, "pareto_compact",
+         "The same speed against error without the sweeps and the extra MPFR precisions: colour is the algorithm, marker the "
+         "number type (hollow: a peer library's variant), so the cost of each number type reads along a colour.",
+         rect=(0, 0.1, 1, 1), dpi=150)
 
 
 def gap_rate_overview(rows, out):
@@ -315,13 +378,15 @@ def gap_rate_overview(rows, out):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=5.2, loc="upper right", frameon=False)
     axes[0].set_ylabel("disagreement rate (FP + FN)", fontsize=7)
-    fig.tight_layout()
-    name = "gap_rate_overview"
-    for ext in ("png", "pdf"):
-        path = os.path.join(out, f"{name}.{ext}")
-        fig.savefig(path, dpi=150, metadata={"CreationDate": None} if ext == "pdf" else None)
-        WRITTEN.append(path)
-    plt.close(fig)
+    save(fig, out, "gap_rate_overview",
+         "The methods in hardware precision (double, long double, float) with wrong answers, at most 8 per panel: the share of "
+         "wrong answers against the size of the certified gap in powers of ten, both sides pooled; a method's line falls to 0 "
+         "once the input is far enough from a degeneracy for its precision.",
+         dpi=150)
+
+
+T_ERROR_MARKS = (("median", 50, "tab:blue", "o"), ("90th percentile", 90, "tab:green", "^"),
+                 ("99th percentile", 99, "tab:orange", "s"), ("maximum", 100, "tab:red", "x"))
 
 
 def t_error(rows, out):
@@ -333,15 +398,35 @@ def t_error(rows, out):
     if not errs:
         return
     keys = sorted(errs)
-    fig, ax = plt.subplots(figsize=(8, 0.25 * len(keys) + 1))
-    for i, k in enumerate(keys):
-        v = np.array(errs[k]) + 1
-        ax.scatter(np.percentile(v, [50, 90, 99, 100]), [i] * 4, c=["tab:blue", "tab:green", "tab:orange", "tab:red"], s=12)
-    ax.set_yticks(range(len(keys)), [f"{q}: {m}" for q, m in keys], fontsize=6)
-    ax.set_xscale("log")
-    ax.set_xlabel("1 + |t - t*| in ulps of max(|t*|, 1) (median, p90, p99, max)")
-    ax.grid(alpha=0.3)
-    save(fig, out, "t_error")
+    queries = [q for q in QUERY_TITLES if any(k[0] == q for k in keys)] + sorted({q for q, _ in keys} - set(QUERY_TITLES))
+    cols = 2 if len(queries) > 1 else 1
+    rn = math.ceil(len(queries) / cols)
+    per_row = [max(sum(1 for k in keys if k[0] == q) for q in queries[r * cols:(r + 1) * cols]) for r in range(rn)]
+    height = min(PAGE_HEIGHT, 0.095 * sum(per_row) + 0.75 * rn + 0.8)
+    fig, axes = plt.subplots(rn, cols, figsize=(PAGE_WIDTH, height), squeeze=False, gridspec_kw={"height_ratios": [n + 6 for n in per_row]})
+    for ax, q in zip(axes.flat, queries):
+        methods = [m for qq, m in keys if qq == q]
+        for i, m in enumerate(methods):
+            v = np.percentile(np.array(errs[(q, m)]) + 1, [p for _, p, _, _ in T_ERROR_MARKS])
+            ax.plot([v[0], v[-1]], [i, i], color="lightgrey", lw=0.8, zorder=0)
+            for (_, _, colour, marker), x in zip(T_ERROR_MARKS, v):
+                ax.scatter(x, i, color=colour, marker=marker, s=9, linewidths=0.8)
+        ax.set_yticks(range(len(methods)), methods, fontsize=5)
+        ax.set_ylim(len(methods) - 0.5, -0.5)
+        ax.set_xscale("log")
+        ax.set_title(QUERY_TITLES.get(q, q), fontsize=7)
+        ax.tick_params(axis="x", labelsize=6)
+        ax.grid(alpha=0.3)
+    for ax in list(axes.flat)[len(queries):]:
+        ax.axis("off")
+    fig.supxlabel("1 + |t - t*| in ulps of max(|t*|, 1), t* the exact entry parameter", fontsize=7)
+    handles = [plt.Line2D([], [], color=c, marker=mk, ls="", ms=4, label=label) for label, _, c, mk in T_ERROR_MARKS]
+    fig.legend(handles=handles, loc="upper center", ncol=4, fontsize=6.5, frameon=False, bbox_to_anchor=(0.5, 1.0))
+    save(fig, out, "t_error",
+         "One panel per line query, one row per method: the error of the entry parameter t it reports, in ulps of the exact "
+         "value, over the instances on which it reported one; the markers are its median, 90th and 99th percentiles and maximum "
+         "(1 means exact), so a long grey bar is a method that is usually accurate but sometimes far off.",
+         rect=(0, 0, 1, 0.96))
 
     # Speed against the error of t: median ns per query against the 99th percentile of the
     # t error, per line query and method.
@@ -351,32 +436,79 @@ def t_error(rows, out):
         if (r["query"], r["method"]) in errs:
             ns[(r["query"], r["method"])].append(fnum(r["ns"]))
             kinds[r["method"]] = r["kind"]
-    queries = sorted({q for q, _ in keys})
-    fig, axes = plt.subplots(1, len(queries), figsize=(5.5 * len(queries), 4.5), squeeze=False)
+    cols = 2 if len(queries) > 1 else 1
+    rn = math.ceil(len(queries) / cols)
+    fig, axes = plt.subplots(rn, cols, figsize=(PAGE_WIDTH, 2.9 * rn + 0.8), squeeze=False)
     for ax, q in zip(axes.flat, queries):
+        pts = []
         for (qq, m) in keys:
             if qq != q:
                 continue
             x = float(np.median(ns[(qq, m)]))
             y = float(np.percentile(np.array(errs[(qq, m)]) + 1, 99))
-            ax.scatter(x, y, color=KIND_COLOURS.get(kinds.get(m), "grey"), s=16)
-            ax.annotate(m, (x, y), fontsize=5.5, xytext=(2, 2), textcoords="offset points")
+            ax.scatter(x, y, color=KIND_COLOURS.get(kinds.get(m), "grey"), s=9, linewidths=0)
+            pts.append((x, y, m))
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel("median ns per query")
-        ax.set_ylabel("99th percentile of 1 + t error (ulps)")
-        ax.set_title(q)
+        best = front(pts)
+        if best:
+            ax.step([p[0] for p in best], [p[1] for p in best], where="post", color="grey", lw=0.7, zorder=0)
+            label_front(ax, best)
+        ax.set_xlabel("median ns per query", fontsize=6.5)
+        ax.set_ylabel("99th percentile of 1 + t error (ulps)", fontsize=6.5)
+        ax.set_title(QUERY_TITLES.get(q, q), fontsize=7.5)
+        ax.tick_params(labelsize=6)
         ax.grid(alpha=0.3)
-    fig.suptitle("speed against the error of the entry parameter t (line queries)")
-    save(fig, out, "pareto_t_error")
+    for ax in list(axes.flat)[len(queries):]:
+        ax.axis("off")
+    handles = [plt.Line2D([], [], color=c, marker="o", ls="", ms=4, label=k) for k, c in KIND_COLOURS.items()]
+    handles.append(plt.Line2D([], [], color="grey", lw=0.7, label="Pareto front (its methods named)"))
+    fig.legend(handles=handles, loc="lower center", ncol=7, fontsize=6, frameon=False)
+    fig.suptitle("speed against the error of the entry parameter t (line queries)", fontsize=8)
+    save(fig, out, "pareto_t_error",
+         "One panel per line query, one dot per method, coloured by kind: further left is faster, lower has a smaller 99th "
+         "percentile of the t error; the grey staircase joins the methods no other beats on both, and only those are named.",
+         rect=(0, 0.05, 1, 1))
 
 
 CODES = "stoiue"
 CODE_COLOURS = ["#4c72b0", "#f2c14e", "#dd8452", "#c44e52", "#bbbbbb", "#000000"]
+CODE_NAMES = ["separated", "touching", "overlapping", "intersecting", "undecided", "error"]
+# A wrong cell is drawn opaque in this one colour, whatever the method answered there.
+WRONG_COLOUR = "#ff00ff"
+WRONG_LABEL = "wrong: meets where the certified answer is separated, or the reverse"
 
 
 def meets(c):
     return c in "toi"
+
+
+def map_legend(fig, fontsize):
+    handles = [plt.Line2D([], [], color=c, marker="s", ls="", label=l) for c, l in zip(CODE_COLOURS, CODE_NAMES)]
+    handles.append(plt.Line2D([], [], color=WRONG_COLOUR, marker="s", ls="", label=WRONG_LABEL))
+    fig.legend(handles=handles, loc="lower center", ncol=4, fontsize=fontsize, frameon=False)
+
+
+def draw_map(ax, code, bad, extent=None):
+    """An answer per cell (code: index into CODES, masked where not evaluated), wrong cells in
+    WRONG_COLOUR on top."""
+    ax.imshow(code, cmap=ListedColormap(CODE_COLOURS), vmin=-0.5, vmax=len(CODES) - 0.5, origin="lower",
+              interpolation="nearest", extent=extent)
+    if bad.any():
+        ax.imshow(np.ma.masked_where(~bad, np.ones(bad.shape)), cmap=ListedColormap([WRONG_COLOUR]), origin="lower",
+                  interpolation="nearest", extent=extent)
+    ax.set_xticks([])
+    ax.set_yticks([])
+
+
+def wrong_counts(sub, sub_cert, evaluated):
+    """False positives (the method meets, the certified answer is separated) and false
+    negatives (the reverse) among the evaluated cells, undecided and error cells aside."""
+    meets_code = np.array([meets(c) for c in CODES])
+    decided = evaluated & (sub != CODES.index("u")) & (sub != CODES.index("e"))
+    m = meets_code[np.clip(sub, 0, None)]
+    c = meets_code[np.clip(sub_cert, 0, None)]
+    return decided & m & ~c, decided & ~m & c
 
 
 def failure_maps(folder, out):
@@ -384,7 +516,6 @@ def failure_maps(folder, out):
     if not os.path.isdir(mapdir):
         return
     code_index = {c: k for k, c in enumerate(CODES)}
-    meets_code = np.array([meets(c) for c in CODES])
     for name in sorted(os.listdir(mapdir)):
         if not name.endswith(".csv"):
             continue
@@ -392,7 +523,7 @@ def failure_maps(folder, out):
         meta = {}
         jpath = os.path.join(mapdir, name[:-4] + ".json")
         if os.path.exists(jpath):
-            READ.append(jpath)
+            cr.note_read(jpath)
             with open(jpath) as f:
                 meta = json.load(f)
         strides = meta.get("map_strides", {})
@@ -402,10 +533,11 @@ def failure_maps(folder, out):
         methods = ["certified"] + [k for k in rows[0] if k not in ("i", "j", "d0_ulps", "d1_ulps", "certified", "gap_lo", "gap_hi")]
         cert = np.full((n, n), -1)
         cert[jj, ii] = [code_index[r["certified"]] for r in rows]
-        cols = 6
+        cols = 8
         rn = math.ceil(len(methods) / cols)
-        fig, axes = plt.subplots(rn, cols, figsize=(2.6 * cols, 2.75 * rn + 0.6), squeeze=False)
-        cmap = ListedColormap(CODE_COLOURS)
+        height = 1.3 * rn + 1.0
+        fig, axes = plt.subplots(rn, cols, figsize=(PAGE_WIDTH, height), squeeze=False)
+        fig.subplots_adjust(left=0.01, right=0.99, top=1 - 0.62 / height, bottom=0.55 / height, wspace=0.08, hspace=0.5)
         for ax, m in zip(axes.flat, methods):
             s = int(strides.get(m, 1))
             # A slow method ran on every s-th row and column through the centre only: draw
@@ -416,35 +548,36 @@ def failure_maps(folder, out):
             sub = code[np.ix_(sel, sel)]
             sub_cert = cert[np.ix_(sel, sel)]
             evaluated = sub >= 0
-            bad = evaluated & (sub != code_index["u"]) & (sub != code_index["e"]) & (meets_code[np.clip(sub, 0, None)] != meets_code[sub_cert])
+            fp, fn = wrong_counts(sub, sub_cert, evaluated)
             if m == "certified":
-                bad[:] = False
+                fp[:] = False
+                fn[:] = False
             lo = np.nonzero(sel)[0]
             extent = (lo[0] - s / 2, lo[-1] + s / 2, lo[0] - s / 2, lo[-1] + s / 2)
-            ax.imshow(np.ma.masked_where(~evaluated, sub), cmap=cmap, vmin=-0.5, vmax=len(CODES) - 0.5, origin="lower",
-                      interpolation="nearest", extent=extent)
-            if bad.any():
-                overlay = np.ma.masked_where(~bad, np.ones(bad.shape))
-                ax.imshow(overlay, cmap=ListedColormap(["magenta"]), alpha=0.55, origin="lower", interpolation="nearest", extent=extent)
+            draw_map(ax, np.ma.masked_where(~evaluated, sub), fp | fn, extent)
             ax.set_xlim(-0.5, n - 0.5)
             ax.set_ylim(-0.5, n - 0.5)
-            cells = int(evaluated.sum())
-            every = "" if s == 1 else f", rows/cols step {s}"
-            ax.set_title(f"{m}\n{int(bad.sum())} of {cells} wrong{every}", fontsize=6)
-            ax.set_xticks([])
-            ax.set_yticks([])
+            base, _, nt = m.partition("/")
+            every = "" if s == 1 else f", step {s}"
+            counts = "" if m == "certified" else f"\n{int(fp.sum())} FP, {int(fn.sum())} FN{every}"
+            ax.set_title(f"{base}\n{nt}{counts}", fontsize=4.8, linespacing=1.05)
         for ax in list(axes.flat)[len(methods):]:
             ax.axis("off")
-        handles = [plt.Line2D([], [], color=c, marker="s", ls="", label=l) for c, l in zip(CODE_COLOURS, ["separated", "touching", "overlapping", "intersecting", "undecided", "error"])]
-        handles.append(plt.Line2D([], [], color="magenta", marker="s", ls="", label="disagrees with certified"))
-        fig.legend(handles=handles, loc="lower center", ncol=7, fontsize=7)
+        map_legend(fig, 6)
         step = meta.get("ulps_per_cell", 1)
-        fig.suptitle(f"{meta.get('description', name)}: {n}x{n} cells, {step} ulp per cell", fontsize=9)
-        save(fig, out, "map_" + name[:-4], rect=(0, 0.03, 1, 0.97))
-        map_compact(rows, [m for m in methods if int(strides.get(m, 1)) == 1], n, name[:-4], out)
+        fig.suptitle(f"{meta.get('description', name)}: {n}x{n} cells, {step} ulp per cell (step s: every s-th row and column evaluated)",
+                     fontsize=7, y=1 - 0.08 / height, va="top")
+        desc = meta.get("description", name[:-4])
+        save(fig, out, "map_" + name[:-4],
+             f"Failure map around one degenerate configuration ({desc}): each panel is a method's answer on a grid of inputs "
+             f"{step} ulp apart in two coordinates, coloured by answer as the certified panel (first) is; magenta cells are wrong "
+             "(the method says the sets meet where the certified answer is separated, or the reverse) and the title counts them "
+             "as false positives (FP) and false negatives (FN).",
+             tight=False)
+        map_compact(rows, [m for m in methods if int(strides.get(m, 1)) == 1], n, name[:-4], desc, out)
 
 
-def map_compact(rows, methods, n, name, out):
+def map_compact(rows, methods, n, name, desc, out):
     """At most 8 panels: the certified answer, then the methods in the order double, float,
     long double, interval, other; methods whose answers agree on every cell share a panel. Only
     methods evaluated on every cell (the caller leaves out the slow types run on a sub-grid)."""
@@ -464,37 +597,135 @@ def map_compact(rows, methods, n, name, out):
     panels = panels[:8]
     cols = 4
     rn = math.ceil(len(panels) / cols)
-    fig, axes = plt.subplots(rn, cols, figsize=(7.6, 2.35 * rn + 0.4), squeeze=False)
-    cmap = ListedColormap(CODE_COLOURS)
+    fig, axes = plt.subplots(rn, cols, figsize=(7.6, 2.35 * rn + 0.55), squeeze=False)
+    ii = np.array([int(r["i"]) for r in rows])
+    jj = np.array([int(r["j"]) for r in rows])
+    cert = np.zeros((n, n), dtype=int)
+    cert[jj, ii] = [CODES.index(r["certified"]) for r in rows]
     for ax, p in zip(axes.flat, panels):
         m = p[0]
-        img = np.zeros((n, n))
-        bad = np.zeros((n, n), dtype=bool)
-        for r in rows:
-            i, j = int(r["i"]), int(r["j"])
-            c = r[m]
-            img[j, i] = CODES.index(c)
-            if m != "certified" and c not in "ue" and meets(c) != meets(r["certified"]):
-                bad[j, i] = True
-        ax.imshow(img, cmap=cmap, vmin=-0.5, vmax=len(CODES) - 0.5, origin="lower", interpolation="nearest")
-        if bad.any():
-            overlay = np.ma.masked_where(~bad, np.ones((n, n)))
-            ax.imshow(overlay, cmap=ListedColormap(["magenta"]), alpha=0.6, origin="lower", interpolation="nearest")
+        img = np.zeros((n, n), dtype=int)
+        img[jj, ii] = [CODES.index(c) for c in columns[m]]
+        fp, fn = wrong_counts(img, cert, np.ones((n, n), dtype=bool))
+        if m == "certified":
+            fp[:] = False
+            fn[:] = False
+        draw_map(ax, img, fp | fn)
         label = "\n".join(p[:2]) + (f" (+{len(p) - 2})" if len(p) > 2 else "")
-        ax.set_title(label + ("" if m == "certified" else f"\n{int(bad.sum())} wrong"), fontsize=6.5)
-        ax.set_xticks([])
-        ax.set_yticks([])
+        ax.set_title(label + ("" if m == "certified" else f"\n{int(fp.sum())} FP, {int(fn.sum())} FN"), fontsize=6.5)
     for ax in list(axes.flat)[len(panels):]:
         ax.axis("off")
-    handles = [plt.Line2D([], [], color=c, marker="s", ls="", label=l) for c, l in zip(CODE_COLOURS, ["separated", "touching", "overlapping", "intersecting", "undecided", "error"])]
-    handles.append(plt.Line2D([], [], color="magenta", marker="s", ls="", label="wrong"))
-    fig.legend(handles=handles, loc="lower center", ncol=7, fontsize=6.5, frameon=False)
-    fig.tight_layout(rect=(0, 0.06, 1, 1))
-    for ext in ("png", "pdf"):
-        path = os.path.join(out, f"map_compact_{name}.{ext}")
-        fig.savefig(path, dpi=150, metadata={"CreationDate": None} if ext == "pdf" else None)
-        WRITTEN.append(path)
-    plt.close(fig)
+    map_legend(fig, 6.5)
+    save(fig, out, f"map_compact_{name}",
+         f"The failure map of {desc} in at most 8 panels: the certified answer first, then one panel per distinct answer "
+         "pattern (methods with the same answer on every cell share a panel, the title names the first two); magenta cells are "
+         "wrong, counted in the title as false positives (FP) and false negatives (FN).",
+         rect=(0, 0.08, 1, 1), dpi=150)
+
+
+# ---- index.html ----------------------------------------------------------------------------
+
+STYLE = """
+body { font-family: sans-serif; margin: 1.5em auto; max-width: 70em; padding: 0 1em; color: #222; }
+h1 { font-size: 1.5em; } h2 { font-size: 1.25em; border-bottom: 1px solid #ccc; } h3 { font-size: 1.05em; }
+table { border-collapse: collapse; font-size: 0.8em; margin: 0.5em 0 1em; }
+th, td { border: 1px solid #ccc; padding: 0.15em 0.5em; text-align: left; }
+th { background: #eee; } td.num, th.num { text-align: right; font-variant-numeric: tabular-nums; }
+tr.wrong td { background: #fde0e0; } tr.certified td { font-weight: bold; }
+figure { margin: 1.5em 0; } figure img { max-width: 100%; border: 1px solid #ddd; }
+figcaption { max-width: 50em; font-size: 0.9em; } pre { font-size: 0.75em; overflow-x: auto; background: #f6f6f6; padding: 0.5em; }
+.note { color: #555; font-size: 0.9em; }
+"""
+
+SUMMARY_COLUMNS = (("method", "method"), ("kind", "kind"), ("n", "n"), ("FP", "false_positive"), ("FN", "false_negative"),
+                   ("class", "class_mismatch"), ("undecided", "undecided"), ("error", "error"), ("invalid", "invalid"),
+                   ("rate", "disagreement_rate"), ("median ns", "median_ns"))
+
+
+def summary_cell(key, value):
+    if key == "disagreement_rate":
+        return f"{fnum(value):.2e}"
+    if key == "median_ns":
+        return f"{fnum(value):.0f}"
+    return value
+
+
+def write_index(folder, out, summary):
+    """index.html: the summary table, then every figure written, each with its caption."""
+    path = os.path.join(folder, "index.html") if os.path.normpath(out) == os.path.normpath(os.path.join(folder, "figures")) \
+        else os.path.join(out, "index.html")
+    here = os.path.dirname(os.path.abspath(path))
+
+    def link(p):
+        return escape(os.path.relpath(os.path.abspath(p), here).replace(os.sep, "/"), quote=True)
+
+    machine = {}
+    mpath = os.path.join(folder, "machine.json")
+    if os.path.exists(mpath):
+        cr.note_read(mpath)
+        with open(mpath) as f:
+            machine = json.load(f)
+    options = machine.get("options", {})
+    name = options.get("name") or os.path.basename(os.path.abspath(folder))
+    html = ["<!DOCTYPE html>", '<html lang="en">', "<head>", '<meta charset="utf-8">', f"<title>certcyl study: {escape(name)}</title>",
+            f"<style>{STYLE}</style>", "</head>", "<body>", f"<h1>certcyl study: {escape(name)}</h1>"]
+    facts = [f"size {options['size']}" if "size" in options else "", f"seed {options['seed']}" if "seed" in options else "",
+             f"commit {machine['commit']}" if "commit" in machine else "", f"{machine['date']}" if "date" in machine else "",
+             f"{machine['merged_shards']} shards merged" if "merged_shards" in machine else ""]
+    html.append(f'<p class="note">{escape(", ".join(f for f in facts if f))}</p>')
+    html.append('<p>Contents: <a href="#summary">summary</a>, <a href="#figures">figures</a> (' +
+                ", ".join(f'<a href="#{escape(n, quote=True)}">{escape(n)}</a>' for n, _ in FIGURES) +
+                '), <a href="#files">files</a>.</p>')
+
+    html.append('<h2 id="summary">Summary</h2>')
+    html.append("<p>One row per query and method (<code>summary.csv</code>): the instances judged (n), the answers that "
+                "disagree with the certified one (FP: says the sets meet, they are separated; FN: the reverse), touching and "
+                "overlapping confused (class), undecided answers, errors and invalid values (a reported value not finite), "
+                "the disagreement rate (FP + FN) / decided answers, and the median time per query. Rows with a false positive "
+                "or a false negative are shaded.</p>")
+    by_query = defaultdict(list)
+    for r in summary:
+        by_query[r["query"]].append(r)
+    order = [q for q in QUERY_TITLES if q in by_query] + sorted(set(by_query) - set(QUERY_TITLES))
+    numeric = ("n", "FP", "FN", "class", "undecided", "error", "invalid", "rate", "median ns")
+    for q in order:
+        rows = by_query[q]
+        html.append(f'<h3 id="summary-{escape(q, quote=True)}">{escape(q)} ({escape(QUERY_TITLES.get(q, q))})</h3>')
+        cells = [[summary_cell(key, r[key]) for _, key in SUMMARY_COLUMNS] for r in rows]
+        classes = ["certified" if r["kind"] == "certified" else "wrong" if int(r["false_positive"]) + int(r["false_negative"]) else ""
+                   for r in rows]
+        html.append(cr.html_table([h for h, _ in SUMMARY_COLUMNS], cells, classes, numeric))
+    tpath = os.path.join(folder, "summary.txt")
+    if os.path.exists(tpath):
+        cr.note_read(tpath)
+        with open(tpath) as f:
+            text = f.read()
+        html.append(f'<p>The same per method over all queries, the checks of the instances, CORE::Expr\'s warnings and the '
+                    f'stages that decided the cylinder pairs (<a href="{link(tpath)}">summary.txt</a>):</p>')
+        html.append(f"<pre>{escape(text)}</pre>")
+
+    html.append('<h2 id="figures">Figures</h2>')
+    html.append("<p>Each figure links to its full-size PNG; a PDF of each sits beside it.</p>")
+    for n, caption in FIGURES:
+        png, pdf = os.path.join(out, n + ".png"), os.path.join(out, n + ".pdf")
+        html.append(f'<figure id="{escape(n, quote=True)}">')
+        html.append(f'<a href="{link(png)}"><img src="{link(png)}" alt="{escape(n, quote=True)}"></a>')
+        html.append(f'<figcaption><b>{escape(n)}</b> (<a href="{link(pdf)}">PDF</a>): {escape(caption)}</figcaption>')
+        html.append("</figure>")
+
+    html.append('<h2 id="files">Files</h2><ul>')
+    for f, what in (("instances.csv", "one row per instance and method"), ("inputs.csv", "one row per instance, its input in hexfloats"),
+                    ("summary.csv", "the table above"), ("summary_families.csv", "the same per family"),
+                    ("stages.csv", "how the certified cylinder-pair answers were decided"),
+                    ("hunt.csv", "the worst input found per method"), ("machine.json", "compiler, flags, CPU, commit, options"),
+                    ("manifest.json", "size, rows and SHA-256 of every data file"), ("Core_Diagnostics", "CORE::Expr's warnings")):
+        if os.path.exists(os.path.join(folder, f)):
+            html.append(f'<li><a href="{link(os.path.join(folder, f))}">{escape(f)}</a>: {escape(what)}</li>')
+    html.append("</ul>")
+    html += ["</body>", "</html>", ""]
+    with open(path, "w") as f:
+        f.write("\n".join(html))
+    print(f"plot_study: index {path}", file=sys.stderr, flush=True)
 
 
 def main():
@@ -519,6 +750,7 @@ def main():
     gap_rate_overview(rows, out)
     t_error(rows, out)
     failure_maps(folder, out)
+    write_index(folder, out, summary)
     write_manifest(folder, out)
     print(f"figures written to {out}")
     return 0
