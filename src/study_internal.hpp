@@ -26,10 +26,13 @@
 #include <limits>
 #include <mutex>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <utility>
 #include <vector>
+
+#include <unistd.h>
 
 #include "certcyl/study/instance.hpp"
 #include "certcyl/study/methods.hpp"
@@ -117,7 +120,8 @@ std::string write_summary(const fs::path& dir);
 // stages.csv from dir's inputs.csv: how the certified answers of the cylinder pairs were
 // decided, per family; returns its table for summary.txt (study_stages.cpp).
 std::string write_stages(const fs::path& dir);
-// Runs experiments/plot_study.py on dir when wanted and possible, else says how (study_report.cpp).
+// Runs experiments/plot_study.py on dir when wanted and possible (figures/ and index.html, one
+// line per figure on standard error), else says how (study_report.cpp).
 void run_plots(const fs::path& dir, bool want, std::ostream& out);
 
 // ---- The sealed results folder (study_manifest.cpp) --------------------------------------------
@@ -141,17 +145,28 @@ nlohmann::json verified_machine(const fs::path& dir, const std::string& label);
 
 // ---- Threads and progress --------------------------------------------------------------------
 
-// A progress bar on standard error, redrawn at most every 200 ms.
+// Progress of a phase on standard error when `on`: on a terminal a bar redrawn at most every
+// 200 ms; otherwise (a log file, a batch job's output) a plain line "label: done/total (p%,
+// t s)" every 10 s and one when the phase completes, so that a log shows the run advancing.
 class Progress {
  public:
-  Progress(bool on, std::string label, std::size_t total) : on_(on), label_(std::move(label)), total_(total) {}
+  Progress(bool on, std::string label, std::size_t total)
+      : on_(on), bar_(on && isatty(2) != 0), label_(std::move(label)), total_(total), start_(std::chrono::steady_clock::now()),
+        last_(bar_ ? std::chrono::steady_clock::time_point{} : start_) {}
   void tick(std::size_t n = 1) {
     const std::size_t d = done_ += n;
     if (!on_) return;
     const auto now = std::chrono::steady_clock::now();
     std::lock_guard lock(mutex_);
-    if (d < total_ && now - last_ < std::chrono::milliseconds(200)) return;
+    if (d < total_ && now - last_ < (bar_ ? std::chrono::milliseconds(200) : std::chrono::milliseconds(10000))) return;
     last_ = now;
+    if (!bar_) {
+      std::ostringstream line;
+      line << label_ << ": " << d << '/' << total_ << " (" << (total_ ? 100 * std::min(d, total_) / total_ : 100) << "%, " << std::fixed
+           << std::setprecision(1) << std::chrono::duration<double>(now - start_).count() << " s)\n";
+      std::cerr << line.str() << std::flush;
+      return;
+    }
     const int width = 30, filled = total_ ? static_cast<int>(width * d / total_) : width;
     std::cerr << '\r' << std::left << std::setw(16) << label_ << " [" << std::string(filled, '#') << std::string(width - filled, ' ')
               << "] " << d << '/' << total_ << std::flush;
@@ -159,12 +174,12 @@ class Progress {
   }
 
  private:
-  bool on_;
+  bool on_, bar_;
   std::string label_;
   std::size_t total_;
   std::atomic<std::size_t> done_{0};
   std::mutex mutex_;
-  std::chrono::steady_clock::time_point last_{};
+  std::chrono::steady_clock::time_point start_, last_;
 };
 
 // Runs body(i) for i in [0, n) on `threads` threads.

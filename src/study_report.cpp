@@ -2,7 +2,8 @@
 // an unsharded run): the disagreement tables per method, per query and per family
 // (summary.txt, summary.csv, summary_families.csv), the stages that decided the certified cylinder
 // pairs (stages.csv, study_stages.cpp), the count of CORE::Expr's warnings (Core_Diagnostics), and
-// the figures (experiments/plot_study.py).
+// the figures with index.html, the page that presents the summary and the figures
+// (experiments/plot_study.py).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -167,10 +168,15 @@ void run_plots(const fs::path& dir, bool want, std::ostream& out) {
     out << "figures: /usr/bin/python3 with matplotlib (Debian python3-matplotlib) not found; when it is installed run\n  " << cmd << '\n';
     return;
   }
-  if (std::system((cmd + " >/dev/null").c_str()) != 0)
+  // The script names each figure on standard error as it writes it (plotting takes longer than a
+  // tiny study); its standard output, one closing line, is not wanted.
+  std::cerr << "figures: plotting into " << (dir / "figures").string() << " (experiments/plot_study.py)" << std::endl;
+  if (std::system((cmd + " >/dev/null").c_str()) != 0) {
     out << "figures: the plotting script failed; run it by hand to see why:\n  " << cmd << '\n';
-  else
+  } else {
     out << "figures: " << (dir / "figures").string() << '\n';
+    out << "report: " << (dir / "index.html").string() << '\n';
+  }
 }
 
 }  // namespace certcyl::cli::detail
