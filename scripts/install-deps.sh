@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Install the Debian packages certcyl needs. Idempotent: packages already present are skipped.
 #   scripts/install-deps.sh            library, command, Python package and tests
-#   scripts/install-deps.sh --study    also the peer libraries and plotting (experiments)
+#   scripts/install-deps.sh --study    also the peer libraries, plotting (experiments) and Chromium
+#                                      (the test that renders the study's index.html)
 #   scripts/install-deps.sh --paper    also LaTeX (the paper)
 #   scripts/install-deps.sh --fuzz     also clang and its sanitizer/libFuzzer runtimes (scripts/fuzz.sh)
 #   scripts/install-deps.sh --slurm    also Slurm and MUNGE (the batch scripts' test on a private local cluster)
@@ -15,7 +16,7 @@ packages=(
 )
 for arg in "$@"; do
   case "$arg" in
-    --study) packages+=(libfcl-dev libbullet-dev libode-dev python3-matplotlib) ;;
+    --study) packages+=(libfcl-dev libbullet-dev libode-dev python3-matplotlib chromium) ;;
     --paper) packages+=(texlive-latex-recommended texlive-latex-extra latexmk poppler-utils) ;;
     --fuzz) packages+=(clang libclang-rt-14-dev) ;;
     --slurm) packages+=(slurm-wlm munge) ;;
