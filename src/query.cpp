@@ -2,10 +2,20 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <set>
 #include <thread>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "certcyl/errors.hpp"
 #include "interrupt.hpp"
@@ -232,6 +242,124 @@ bool read_line(std::streambuf& sb, std::string& line, std::size_t limit) {
   return true;
 }
 
+// CORE::Expr ends the process on some inputs: std::exit(1) from its BigFloat division ("possible
+// zero divisor"), SIGFPE from GMP on a non-finite double (experiments/STUDY.md). Lines answered in
+// core_expr are therefore answered one at a time in a child process; the parent keeps every
+// answer the child wrote, and a line whose computation ended the child is answered "invalid" with
+// the reason, and the next child goes on from the line after it. The child works in a temporary
+// folder, removed afterwards, so that CORE's Core_Diagnostics file never lands in the working
+// directory, and its standard error is closed to CORE's messages (the reason carries them).
+bool isolated(const QueryOptions& options) {
+  return options.nt.kind == NumberKind::core_expr && options.method != "certified" && options.method != "robust_double";
+}
+
+// The answer to a line whose computation ended the process that answered it.
+std::string ended_answer(const std::string& line, const QueryOptions& options, std::size_t line_number, const std::string& reason) {
+  json input;
+  try {
+    input = parse_strict_json(line);
+  } catch (const std::exception&) {
+    return error_line(recover_id(line), line_number, "internal error: " + reason).dump();
+  }
+  const auto given_id = input.is_object() ? input.find("id") : input.end();
+  const json id = input.is_object() && given_id != input.end() && (given_id->is_string() || given_id->is_number()) ? *given_id : json(nullptr);
+  ojson result{{"id", ojson(id)}};
+  if (input.is_object())
+    if (auto meta = input.find("meta"); meta != input.end()) result["meta"] = ojson(*meta);
+  result["answer"] = "invalid";
+  result["certified"] = false;
+  result["method"] = options.method;
+  result["nt"] = options.nt.name();
+  result["reason"] = reason;
+  if (options.brief) result = brief_answer(result);
+  return result.dump(-1, ' ', false, ojson::error_handler_t::replace);
+}
+
+// Why the child ended: CORE's last error in its diagnostics file, else the signal or status.
+std::string ended_reason(int status, const std::filesystem::path& diagnostics) {
+  std::ifstream in(diagnostics);
+  std::string last;
+  for (std::string l; std::getline(in, l);)
+    if (l.rfind("CORE ERROR", 0) == 0) last = l;
+  if (!last.empty()) {
+    if (auto colon = last.find("): "); colon != std::string::npos) last.erase(0, colon + 3);
+    return "CORE::Expr ended the computation: " + last;
+  }
+  if (WIFSIGNALED(status))
+    return "the computation ended by signal " + std::to_string(WTERMSIG(status)) + " (" + strsignal(WTERMSIG(status)) + ")";
+  return "the computation ended the process with exit status " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+}
+
+// Answers lines[i...] in child processes as above; answers[i] is set for every line answered
+// (all of them unless a signal interrupted the run). No other thread runs during the call.
+void answer_isolated(const std::vector<std::string>& lines, const std::vector<std::size_t>& numbers, const QueryOptions& options,
+                     std::vector<std::string>& answers, bool& batch_error) {
+  namespace fs = std::filesystem;
+  std::size_t i = 0;
+  while (i < lines.size() && !interrupt_signal()) {
+    std::error_code ec;
+    std::string pattern = (fs::temp_directory_path(ec) / "certcyl-core-XXXXXX").string();
+    const bool have_dir = !ec && mkdtemp(pattern.data()) != nullptr;
+    const fs::path dir = have_dir ? fs::path(pattern) : fs::path();
+    int fds[2];
+    const pid_t pid = pipe(fds) == 0 ? fork() : -2;
+    if (pid == -1) close(fds[0]), close(fds[1]);
+    if (pid < 0) {
+      if (have_dir) fs::remove_all(dir, ec);
+      throw std::runtime_error(std::string("cannot start a process for core_expr: ") + std::strerror(errno));
+    }
+    if (pid == 0) {
+      close(fds[0]);
+      if (!have_dir || chdir(dir.c_str()) != 0) _exit(4);
+      if (const int null_fd = open("/dev/null", O_WRONLY); null_fd >= 0) dup2(null_fd, 2);
+      for (std::size_t j = i; j < lines.size() && !interrupt_signal(); ++j) {
+        const ojson a = answer_line(lines[j], options, numbers[j]);
+        std::string data(1, a.contains("error") ? 'E' : 'A');
+        data.append(a.dump(-1, ' ', false, ojson::error_handler_t::replace)).push_back('\n');
+        for (std::size_t done = 0; done < data.size();) {
+          const ssize_t n = write(fds[1], data.data() + done, data.size() - done);
+          if (n < 0 && errno == EINTR) continue;
+          if (n <= 0) _exit(3);
+          done += static_cast<std::size_t>(n);
+        }
+      }
+      _exit(0);
+    }
+    close(fds[1]);
+    std::string pending;
+    char buf[65536];
+    bool forwarded = false;
+    for (;;) {
+      const ssize_t n = read(fds[0], buf, sizeof buf);
+      if (n == 0) break;
+      if (n < 0) {
+        if (errno != EINTR) break;
+        // An interruption: the child finishes its line and stops (it shares the handlers).
+        if (interrupt_signal() && !forwarded) kill(pid, SIGTERM), forwarded = true;
+        continue;
+      }
+      pending.append(buf, static_cast<std::size_t>(n));
+      for (std::size_t end; (end = pending.find('\n')) != std::string::npos && i < lines.size();) {
+        if (pending[0] == 'E') batch_error = true;
+        answers[i++] = pending.substr(1, end - 1);
+        pending.erase(0, end + 1);
+      }
+    }
+    close(fds[0]);
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    const bool clean = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    if (!clean && WIFEXITED(status) && WEXITSTATUS(status) == 4) {
+      fs::remove_all(dir, ec);
+      throw std::runtime_error("cannot make a temporary folder for core_expr's diagnostics");
+    }
+    if (!clean && i < lines.size() && !(forwarded && WIFSIGNALED(status)))
+      answers[i] = ended_answer(lines[i], options, numbers[i], ended_reason(status, dir / "Core_Diagnostics")), ++i;
+    fs::remove_all(dir, ec);
+  }
+}
+
 }  // namespace
 
 int run_query(std::istream& in, std::ostream& out, const QueryOptions& options, unsigned threads) {
@@ -245,6 +373,7 @@ int run_query(std::istream& in, std::ostream& out, const QueryOptions& options, 
   std::size_t line_number = 0;
   bool any_error = false;
   bool eof = false;
+  std::string fatal;  // a read error or a failure to isolate a line: written after the answers
   std::streambuf* sb = in.rdbuf();
   while (!eof) {
     lines.clear();
@@ -256,8 +385,18 @@ int run_query(std::istream& in, std::ostream& out, const QueryOptions& options, 
         // No more input at hand, or --line-buffered: answer what was read now (a co-process
         // that writes a line and waits for its answer gets it; input from a file still fills
         // whole batches without the option).
-        if (!lines.empty() && (options.line_buffered || sb->in_avail() <= 0)) break;
-        if (!read_line(*sb, line, kMaxLineBytes)) {
+        bool more = false;
+        try {
+          if (!lines.empty() && (options.line_buffered || sb->in_avail() <= 0)) break;
+          more = read_line(*sb, line, kMaxLineBytes);
+        } catch (const std::ios_base::failure& e) {
+          // A read error (standard input is a directory, a device failed): the lines read
+          // before it are answered and written, then the run ends with status 1.
+          std::string reason = e.what();
+          if (auto colon = reason.rfind(": "); colon != std::string::npos) reason.erase(0, colon + 2);
+          fatal = "certcyl query: read error: standard input: " + reason;
+        }
+        if (!more) {
           eof = true;
           break;
         }
@@ -280,7 +419,15 @@ int run_query(std::istream& in, std::ostream& out, const QueryOptions& options, 
         answers[i] = a.dump(-1, ' ', false, ojson::error_handler_t::replace);
       }
     };
-    if (threads == 1 || lines.size() < 2) {
+    if (isolated(options)) {
+      bool isolated_error = false;
+      try {
+        answer_isolated(lines, numbers, options, answers, isolated_error);
+      } catch (const std::exception& e) {
+        fatal = std::string("certcyl query: ") + e.what();
+      }
+      if (isolated_error) batch_error = true;
+    } else if (threads == 1 || lines.size() < 2) {
       work();
     } else {
       std::vector<std::thread> pool;
@@ -296,6 +443,10 @@ int run_query(std::istream& in, std::ostream& out, const QueryOptions& options, 
     out.flush();
     if (!out) {
       std::cerr << "certcyl query: error writing standard output\n";
+      return 1;
+    }
+    if (!fatal.empty()) {
+      std::cerr << fatal << '\n';
       return 1;
     }
     if (const int sig = interrupt_signal()) return 128 + sig;

@@ -271,6 +271,12 @@ int run_scene(const std::string& path, std::ostream& out, unsigned threads, bool
   } catch (const std::bad_alloc&) {
     err << "certcyl scene: " << path << ": out of memory reading the scene\n";
     return 1;
+  } catch (const std::ios_base::failure& e) {
+    // The file opened but cannot be read (a directory, a device error).
+    std::string reason = e.what();
+    if (auto colon = reason.rfind(": "); colon != std::string::npos) reason.erase(0, colon + 2);
+    err << "certcyl scene: read error: '" << path << "': " << reason << "\n";
+    return 1;
   }
   if (file.bad()) {
     err << "certcyl scene: " << path << ": read error\n";

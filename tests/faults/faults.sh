@@ -169,5 +169,50 @@ check_message 2 'cylinders[1]: name "a" is also the name of cylinders[0]' "$cert
 "$py" -c "print('{\"cylinders\": ' + '[' * 100000 + ']' * 100000 + '}')" > "$work/deep.json"
 check_message 2 "nested deeper than 16 levels" "$certcyl" scene "$work/deep.json"
 
+# 9. CORE::Expr ends its process on some inputs (exit(1) from a BigFloat division, SIGFPE from
+# GMP): the line is answered "invalid" with the reason, every other line is answered, and no
+# Core_Diagnostics file is left in the working directory.
+good_line='{"id":"g%s","query":"line_cylinder","line":{"origin":[0,0,0.5],"direction":[1,0,0]},"cylinder":'"$cyl"'}'
+core_line='{"id":43,"query":"line_cylinder","line":{"origin":[0,3.0,1.7976931348623157e+308],"direction":[1e+154,-1,1e+154]},"cylinder":{"p0":[-1,-1,-1e+300],"p1":[-1e+300,-1.7976931348623157e+308,1e+154],"radius":5e-324}}'
+fpe_line='{"id":906,"query":"cylinder_cylinder","a":{"p0":[1.7976931348623157e+308,1e-300,3.0],"p1":[1e-160,3.0,-1e+300],"radius":1.7976931348623157e+308},"b":{"p0":[-1e+300,-1e+300,5e-324],"p1":[5e-324,-1.7976931348623157e+308,1e+300],"radius":1.7976931348623157e+308}}'
+mkdir -p "$work/cwd"
+{ printf "$good_line\n" 1; printf "$good_line\n" 2; echo "$core_line"; printf "$good_line\n" 3; } > "$work/core.jsonl"
+for threads in 1 2; do
+  (cd "$work/cwd" && "$certcyl" query --method shene --nt core_expr --threads $threads < "$work/core.jsonl" > "$work/core.out" 2> "$work/core.err")
+  status=$?
+  got=$("$py" -c "
+import json
+for l in open('$work/core.out'):
+    j = json.loads(l)
+    print(j['id'], j['answer'], j.get('reason', ''))")
+  expected=$(printf '%s\n' 'g1 overlapping ' 'g2 overlapping ' '43 invalid CORE::Expr ended the computation: BigFloat error: possible zero divisor.' 'g3 overlapping ')
+  if [[ $status == 0 && $got == "$expected" && ! -e $work/cwd/Core_Diagnostics && ! -s $work/core.err ]]; then
+    pass "shene in core_expr, --threads $threads: CORE's exit is an invalid answer, the other lines kept"
+  else fail "shene in core_expr --threads $threads: status $status, Core_Diagnostics $(ls "$work/cwd")"; diff <(echo "$expected") <(echo "$got"); fi
+done
+{ printf "$good_line\n" 1 | sed 's/"query":"line_cylinder","line":{"origin":\[0,0,0.5\],"direction":\[1,0,0\]},"cylinder"/"query":"cylinder_cylinder","a":{"p0":[0,0,0],"p1":[0,0,1],"radius":1},"b"/'
+  echo "$fpe_line"; } > "$work/fpe.jsonl"
+(cd "$work/cwd" && "$certcyl" query --method eberly_corrected --nt core_expr < "$work/fpe.jsonl" > "$work/fpe.out" 2> "$work/fpe.err")
+status=$?
+got=$("$py" -c "
+import json
+for l in open('$work/fpe.out'):
+    j = json.loads(l)
+    print(j['id'], j['answer'], j.get('reason', ''))")
+expected=$(printf '%s\n' 'g1 overlapping ' '906 invalid the computation ended by signal 8 (Floating point exception)')
+if [[ $status == 0 && $got == "$expected" && ! -e $work/cwd/Core_Diagnostics ]]; then
+  pass "eberly_corrected in core_expr: SIGFPE is an invalid answer, the line before kept"
+else fail "eberly_corrected in core_expr: status $status"; diff <(echo "$expected") <(echo "$got"); fi
+
+# 10. A file that opens but cannot be read (a directory): "read error" naming it, exit 1; the
+# lines answered before are kept.
+mkdir -p "$work/adir"
+check_message 1 "certcyl scene: read error: '$work/adir': Is a directory" "$certcyl" scene "$work/adir"
+"$certcyl" query < "$work/adir" > "$work/dir.out" 2> "$work/dir.err"
+status=$?
+if [[ $status == 1 && $(cat "$work/dir.err") == "certcyl query: read error: standard input: Is a directory" && ! -s $work/dir.out ]]; then
+  pass "query < a directory: exit 1, read error"
+else fail "query < a directory: status $status, $(cat "$work/dir.err")"; fi
+
 echo "$failures failure(s)"
 [[ $failures == 0 ]]
