@@ -12,6 +12,7 @@
 
 #include "certcyl/study/families.hpp"
 #include "certcyl/study/gap.hpp"
+#include "query.hpp"
 #include "study_internal.hpp"
 
 namespace certcyl::cli {
@@ -68,7 +69,8 @@ ojson gap_json(const Case& c) {
 
 // Case from one line of a cases file; throws std::runtime_error (without the line's number).
 Case parse_case(const std::string& text) {
-  const nlohmann::json j = nlohmann::json::parse(text);
+  // Strict: a member named twice (a second "answer" or "meta") is an error, not the last one.
+  const nlohmann::json j = parse_strict_json(text);
   if (!j.is_object()) throw std::runtime_error("expected a JSON object");
   Case c;
   if (!j.contains("id") || !j["id"].is_string()) throw std::runtime_error("id: expected a string");

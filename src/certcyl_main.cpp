@@ -1,8 +1,12 @@
 // certcyl: certified cylinder intersection queries from the command line.
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
+#include <cmath>
 #include <csignal>
+#include <cstdlib>
 #include <iostream>
+#include <sstream>
 #include <thread>
 
 #include <unistd.h>
@@ -34,6 +38,27 @@ std::string query_help() {
   s += "\nNumbers: a JSON number is its binary64 value; a string is an exact rational\n"
        "(\"p/q\", decimal \"0.1\", hexfloat \"0x1.8p-3\"). See README.md for the operand formats.";
   return s;
+}
+
+// A finite number in [lo, hi]: "nan" and "inf" are rejected (CLI::Range lets NaN through).
+CLI::Validator finite_in(double lo, double hi) {
+  std::ostringstream range;
+  range << '[' << lo << ", " << hi << ']';
+  return CLI::Validator(
+      [lo, hi, r = range.str()](std::string& s) -> std::string {
+        char* end = nullptr;
+        errno = 0;
+        const double v = std::strtod(s.c_str(), &end);
+        if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v) || v < lo || v > hi)
+          return "expected a finite number in " + r + ", got '" + s + "'";
+        return {};
+      },
+      "FLOAT in " + range.str());
+}
+
+// An integer in [0, 2^64 - 1]: a negative value is an error, never wrapped.
+CLI::Validator uint64_option() {
+  return CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 0, UINT64_MAX); }, "UINT64");
 }
 
 }  // namespace
@@ -104,12 +129,11 @@ int main(int argc, char** argv) {
       "seed gives the same scene on every machine. Writes the scene JSON to standard output.");
   make_scene->add_option("--cylinders", scene_spec.cylinders, "Number of cylinders (default 100000)")
       ->check(CLI::Range(1, 100000000));
-  make_scene->add_option("--seed", scene_spec.seed, "Random seed (default 1)")
-      ->check(CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 0, UINT64_MAX); }, "UINT64"));
+  make_scene->add_option("--seed", scene_spec.seed, "Random seed (default 1)")->check(uint64_option());
   make_scene->add_option("--neighbours", scene_spec.neighbours, "Mean number of boxes meeting a cylinder's box (default 8)")
-      ->check(CLI::Range(0.01, 1000.0));
+      ->check(finite_in(0.01, 1000.0));
   make_scene->add_option("--touching", scene_spec.touching_share, "Share of cylinders in exactly touching pairs (default 0.02)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(finite_in(0.0, 1.0));
 
   certcyl::cli::StudyOptions study_options;
   std::string shard;
@@ -151,7 +175,7 @@ int main(int argc, char** argv) {
                                                 "triangle_cylinder or cylinder_cylinder")->required();
   cases->add_option("--family", case_spec.families, "Only these families (repeatable; default all of the query's)");
   cases->add_option("--size", case_spec.size, "tiny, small (default), default, large, or cases per family");
-  cases->add_option("--seed", case_spec.seed, "Random seed (default 1, the study's)");
+  cases->add_option("--seed", case_spec.seed, "Random seed (default 1, the study's)")->check(uint64_option());
   cases->add_option("--threads", case_spec.threads, "Threads certifying the cases (default 2; 0 = all cores)")
       ->check(CLI::Range(0u, 1024u));
 
@@ -173,7 +197,7 @@ int main(int argc, char** argv) {
   judge->add_option("--query", judge_options.spec.query, "Make the cases of this query");
   judge->add_option("--family", judge_options.spec.families, "Only these families (repeatable)");
   judge->add_option("--size", judge_options.spec.size, "tiny, small (default), default, large, or cases per family");
-  judge->add_option("--seed", judge_options.spec.seed, "Random seed (default 1)");
+  judge->add_option("--seed", judge_options.spec.seed, "Random seed (default 1)")->check(uint64_option());
   judge->add_option("--threads", judge_options.spec.threads, "Threads certifying the cases (default 2; 0 = all cores)")
       ->check(CLI::Range(0u, 1024u));
   judge->add_option("--name", judge_options.name, "Results folder name under --out (default judge)");
@@ -184,7 +208,7 @@ int main(int argc, char** argv) {
   judge->add_option("--timeout", judge_options.timeout_seconds,
                     "Seconds --exec's program or --plugin's function may take for one answer; then it is killed,\n"
                     "the answers before it are kept and the judge exits 1 naming the line (default 60; 0: no limit)")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(finite_in(0.0, 1e6));
   std::string judge_shard;
   judge->add_option("--shard", judge_shard,
                     "Judge shard i of n (i/n, 0-based: the cases whose index is i modulo n) into\n"

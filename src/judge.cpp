@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "judge_internal.hpp"
+#include "study.hpp"
 
 namespace certcyl::cli {
 
@@ -17,6 +18,7 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
   try {
     const int sources = !o.answers_file.empty() + !o.exec_command.empty() + !o.plugin_file.empty();
     if (sources != 1) throw std::invalid_argument("give one of --answers, --exec and --plugin");
+    check_folder_name(o.name, "--name");  // the results stay inside --out
     std::optional<PluginInfo> plugin;
     if (!o.plugin_file.empty()) plugin = inspect_plugin(o.plugin_file);
 
@@ -86,8 +88,12 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
       if (sharded) err << "certcyl judge: the shard is not finished; what was judged is in " << partial.string() << '\n';
       return 1;
     }
+    if (!out) {
+      err << "certcyl judge: error writing standard output\n";
+      return 1;
+    }
     if (sharded) fs::rename(partial, shard_folder);
-    return out ? 0 : 1;
+    return 0;
   } catch (const std::exception& e) {
     err << "certcyl judge: " << e.what() << '\n';
     return 1;

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "judge_internal.hpp"
+#include "query.hpp"
 
 namespace certcyl::cli::judging {
 
@@ -18,9 +19,11 @@ Answers read_answers(std::istream& in, const std::string& label, const std::vect
     const std::string where = label + " line " + std::to_string(n) + ": ";
     nlohmann::json j;
     try {
-      j = nlohmann::json::parse(text);
+      j = parse_strict_json(text);
     } catch (const nlohmann::json::exception& e) {
       throw std::runtime_error(where + "not JSON (" + e.what() + ")");
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(where + e.what());  // a member named twice, nesting too deep
     }
     if (!j.is_object()) throw std::runtime_error(where + "expected a JSON object");
     if (!j.contains("id") || !(j["id"].is_string() || j["id"].is_number_integer()))

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "judge_internal.hpp"
+#include "query.hpp"
 
 namespace certcyl::cli::judging {
 namespace {
@@ -152,7 +153,7 @@ Answers run_exec(const std::string& command, const std::vector<Case>& cases, con
       break;
     }
     try {
-      const nlohmann::json j = nlohmann::json::parse(text);
+      const nlohmann::json j = parse_strict_json(text);
       if (!j.is_object() || !j.contains("id")) throw std::invalid_argument("expected a JSON object with \"id\"");
       if (j["id"] != cases[n].id) throw std::invalid_argument("id " + j["id"].dump() + " answers another case");
       result.answers[n] = answered_line(j);

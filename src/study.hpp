@@ -31,6 +31,10 @@ struct StudyOptions {
 // Parses "i/n" (integers 0 <= i < n <= 100000); throws std::invalid_argument naming --shard.
 void parse_shard(const std::string& s, int& index, int& count);
 
+// Throws std::invalid_argument naming `key` unless `name` is one plain, visible folder name (not
+// empty, no '/', not starting with '.'), so that results written under --out stay inside it.
+void check_folder_name(const std::string& name, const std::string& key);
+
 // "" when text is a decimal integer in [lo, hi] (digits only: no sign, base prefix or fraction),
 // else "expected an integer in [lo, hi], got 'text'": the check of --seed and --threads.
 std::string integer_error(const std::string& text, unsigned long long lo, unsigned long long hi);

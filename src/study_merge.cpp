@@ -107,10 +107,7 @@ int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
       if (e.is_directory() && name.rfind("shard-", 0) == 0) shards.push_back(e.path());
       if (e.is_directory() && name.rfind(".shard-", 0) == 0) unfinished.push_back(name);
     }
-  if (shards.empty()) {
-    out << "merge: no shard-*-of-* folders in " << dir_name << '\n';
-    return 1;
-  }
+  if (shards.empty()) throw std::runtime_error("merge: no shard-*-of-* folders in " + dir_name);
   std::sort(unfinished.begin(), unfinished.end());
   nlohmann::json machine;
   shards = checked_shards(dir, std::move(shards), unfinished, machine);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "certcyl/study/families.hpp"
+#include "query.hpp"
 #include "study_internal.hpp"
 
 namespace certcyl::cli::detail {
@@ -92,11 +93,6 @@ std::string nearest(const std::string& wrong, const std::vector<std::string>& va
   return s;
 }
 
-// Throws unless `name` is one plain, visible folder name, so that the results stay inside --out.
-void check_folder_name(const std::string& name, const std::string& key) {
-  if (name.empty() || name == ".." || name.find('/') != std::string::npos || name.find('\0') != std::string::npos || name[0] == '.')
-    throw std::invalid_argument(key + ": expected a plain folder name (not empty, no '/', not starting with '.'), got '" + name + "'");
-}
 
 // The file's bytes; a missing or unreadable file is an error with the system's reason.
 std::string read_config(const std::string& file) {
@@ -143,7 +139,9 @@ void apply_config(StudyOptions& o) {
   const std::string text = read_config(o.config_file);
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(text);
+    j = parse_strict_json(text);  // a key given twice is an error, not the last one winning
+  } catch (const InvalidInput& e) {
+    throw std::invalid_argument("--config: '" + o.config_file + "': " + e.what());
   } catch (const nlohmann::json::exception& e) {
     // e.what() is "[json.exception.parse_error.N] parse error at line L, column C: ..." or, for a
     // number beyond the doubles, "[json.exception.out_of_range.406] number overflow parsing '...'".
@@ -219,6 +217,11 @@ std::vector<Planned> plan_instances(const StudyOptions& o) {
 }  // namespace certcyl::cli::detail
 
 namespace certcyl::cli {
+
+void check_folder_name(const std::string& name, const std::string& key) {
+  if (name.empty() || name == ".." || name.find('/') != std::string::npos || name.find('\0') != std::string::npos || name[0] == '.')
+    throw std::invalid_argument(key + ": expected a plain folder name (not empty, no '/', not starting with '.'), got '" + name + "'");
+}
 using namespace detail;
 
 void parse_shard(const std::string& s, int& index, int& count) {

@@ -214,5 +214,44 @@ if [[ $status == 1 && $(cat "$work/dir.err") == "certcyl query: read error: stan
   pass "query < a directory: exit 1, read error"
 else fail "query < a directory: status $status, $(cat "$work/dir.err")"; fi
 
+# 11. judge: a full output, a --name outside --out; merge without shards: messages on stderr.
+"$certcyl" cases --query line_cylinder --size 2 > "$work/cases.jsonl" 2> /dev/null
+"$certcyl" query < "$work/cases.jsonl" > "$work/answers.jsonl"
+if [[ -w /dev/full ]]; then
+  "$certcyl" judge --cases "$work/cases.jsonl" --answers "$work/answers.jsonl" --out "$work/j" > /dev/full 2> "$work/full.err"
+  status=$?
+  [[ $status == 1 && $(cat "$work/full.err") == *"certcyl judge: error writing standard output"* ]] &&
+    pass "judge > /dev/full: exit 1 with a message" || fail "judge > /dev/full: status $status, $(cat "$work/full.err")"
+fi
+for name in ../escaped "$work/abs" ""; do
+  check_message 1 "--name: expected a plain folder name (not empty, no '/', not starting with '.'), got '$name'" \
+    "$certcyl" judge --cases "$work/cases.jsonl" --answers "$work/answers.jsonl" --out "$work/j" --name "$name"
+done
+[[ ! -e $work/escaped && ! -e $work/abs ]] && pass "judge --name: nothing written outside --out" || fail "judge --name wrote outside --out"
+mkdir -p "$work/noshards"
+"$certcyl" merge "$work/noshards" > "$work/merge.out" 2> "$work/merge.err"
+status=$?
+if [[ $status == 1 && ! -s $work/merge.out && $(cat "$work/merge.err") == *"merge: no shard-*-of-* folders in $work/noshards"* ]]; then
+  pass "merge without shards: the error on standard error, exit 1"
+else fail "merge without shards: status $status, stdout $(cat "$work/merge.out")"; fi
+
+# 12. Options: a negative seed is not wrapped, NaN is not a number in range.
+check_message 1 "--seed: expected an integer in [0, 18446744073709551615], got '-1'" "$certcyl" cases --query line_cylinder --seed -1
+check_message 1 "--seed: expected an integer in [0, 18446744073709551615], got '-1'" \
+  "$certcyl" judge --query line_cylinder --answers "$work/answers.jsonl" --seed -1
+check_message 1 "--touching: expected a finite number in [0, 1], got 'nan'" "$certcyl" make-scene --cylinders 10 --touching nan
+check_message 1 "--neighbours: expected a finite number in [0.01, 1000], got 'nan'" "$certcyl" make-scene --cylinders 10 --neighbours nan
+check_message 1 "--timeout: expected a finite number in [0, 1e+06], got 'nan'" \
+  "$certcyl" judge --cases "$work/cases.jsonl" --answers "$work/answers.jsonl" --out "$work/j" --timeout nan
+
+# 13. A key given twice: an error naming it, never the last one winning.
+echo '{"per_family": 1, "per_family": 2}' > "$work/dup_config.json"
+check_message 1 "--config: '$work/dup_config.json': member \"per_family\" appears twice in one object" \
+  "$certcyl" study --config "$work/dup_config.json" --out "$work/r" --no-plots --no-progress
+head -1 "$work/answers.jsonl" | sed 's/"answer":"\([a-z]*\)"/"answer":"\1","answer":"separated"/' > "$work/dup_answers.jsonl"
+tail -n +2 "$work/answers.jsonl" >> "$work/dup_answers.jsonl"
+check_message 1 "dup_answers.jsonl line 1: member \"answer\" appears twice in one object" \
+  "$certcyl" judge --cases "$work/cases.jsonl" --answers "$work/dup_answers.jsonl" --out "$work/j"
+
 echo "$failures failure(s)"
 [[ $failures == 0 ]]
