@@ -56,6 +56,33 @@ nlohmann::json file_entry(const fs::path& p, const std::string& rel) {
   return e;
 }
 
+// What an entry that is neither a regular file nor a folder is, for a message.
+const char* kind_of(fs::file_type t) {
+  switch (t) {
+    case fs::file_type::symlink: return "a symbolic link";
+    case fs::file_type::fifo: return "a FIFO";
+    case fs::file_type::character:
+    case fs::file_type::block: return "a device";
+    case fs::file_type::socket: return "a socket";
+    case fs::file_type::not_found: return "missing";
+    default: return "not a regular file";
+  }
+}
+
+// Throws unless the folder and everything in it are regular files and folders (links not
+// followed): a symbolic link, a FIFO or a device could lead outside the folder, block a read or
+// never end (a link to /dev/zero, or to a folder holding the shard, copied into itself).
+void check_plain_entries(const fs::path& dir, const std::string& label) {
+  const fs::file_type top = fs::symlink_status(dir).type();
+  if (top != fs::file_type::directory) throw std::runtime_error(label + ": " + kind_of(top) + ", not a folder");
+  for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator(); ++it) {
+    const fs::file_type t = it->symlink_status().type();
+    if (t != fs::file_type::regular && t != fs::file_type::directory)
+      throw std::runtime_error(label + "/" + it->path().lexically_relative(dir).generic_string() + ": " + kind_of(t) +
+                               ", not a regular file of the size its manifest lists");
+  }
+}
+
 }  // namespace
 
 std::string sha256_file(const fs::path& p) {
@@ -123,6 +150,7 @@ void seal_folder(const fs::path& partial, const fs::path& dir) {
 }
 
 nlohmann::json verified_machine(const fs::path& dir, const std::string& label) {
+  check_plain_entries(dir, label);
   const fs::path manifest_file = dir / "manifest.json";
   std::ifstream in(manifest_file);
   if (!in) throw std::runtime_error(label + ": no manifest.json (an unfinished, killed or foreign run)");

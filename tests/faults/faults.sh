@@ -253,5 +253,36 @@ tail -n +2 "$work/answers.jsonl" >> "$work/dup_answers.jsonl"
 check_message 1 "dup_answers.jsonl line 1: member \"answer\" appears twice in one object" \
   "$certcyl" judge --cases "$work/cases.jsonl" --answers "$work/dup_answers.jsonl" --out "$work/j"
 
+# 14. merge reads only regular files of the listed size: a symbolic link (to /dev/zero, to the
+# folder itself) or a FIFO in a shard is refused, naming it, before anything is read or written.
+echo '{"per_family": 1, "map_cells": 2, "hunt_evaluations": 1, "methods": ["robust/double"]}' > "$work/small_config.json"
+for i in 0 1; do
+  "$certcyl" study --config "$work/small_config.json" --shard $i/2 --out "$work/r" --name m --no-plots --no-progress > /dev/null 2>&1
+done
+if [[ -f $work/r/m/shard-0-of-2/manifest.json && -f $work/r/m/shard-1-of-2/manifest.json ]]; then
+  cp -r "$work/r/m" "$work/r/good"
+  "$certcyl" merge "$work/r/good" --no-plots > /dev/null 2> "$work/merge.err" &&
+    pass "merge of two shards" || fail "merge of two shards: $(cat "$work/merge.err")"
+  damage() {  # label, what to do in shard-0-of-2, expected message
+    rm -rf "$work/r/d"
+    cp -r "$work/r/m" "$work/r/d"
+    (cd "$work/r/d/shard-0-of-2" && eval "$2")
+    local before=$(du -sk "$work/r/d" | cut -f1)
+    (ulimit -f 20000; timeout 20 "$certcyl" merge "$work/r/d" --no-plots > /dev/null 2> "$work/merge.err")
+    local status=$?
+    local after=$(du -sk "$work/r/d" | cut -f1)
+    if [[ $status == 1 && $(cat "$work/merge.err") == "certcyl: merge: shard-0-of-2/$3" && $after == "$before" ]]; then pass "merge refuses $1"
+    else fail "merge with $1: status $status, $before -> $after kB, $(head -c 300 "$work/merge.err")"; fi
+  }
+  damage "a link to /dev/zero" "rm hunt.csv && ln -s /dev/zero hunt.csv" \
+    "hunt.csv: a symbolic link, not a regular file of the size its manifest lists"
+  damage "a link to the folder" "rm -rf failure_maps && ln -s .. failure_maps" \
+    "failure_maps: a symbolic link, not a regular file of the size its manifest lists"
+  damage "a FIFO" "mkfifo hunt.csv.fifo" \
+    "hunt.csv.fifo: a FIFO, not a regular file of the size its manifest lists"
+else
+  fail "study --shard did not write two shards"
+fi
+
 echo "$failures failure(s)"
 [[ $failures == 0 ]]
