@@ -263,21 +263,24 @@ if [[ -f $work/r/m/shard-0-of-2/manifest.json && -f $work/r/m/shard-1-of-2/manif
   cp -r "$work/r/m" "$work/r/good"
   "$certcyl" merge "$work/r/good" --no-plots > /dev/null 2> "$work/merge.err" &&
     pass "merge of two shards" || fail "merge of two shards: $(cat "$work/merge.err")"
-  damage() {  # label, what to do in shard-0-of-2, expected message
+  damage() {  # label, what to do in the shard, expected message, the shard (default shard-0-of-2)
+    local shard=${4:-shard-0-of-2}
     rm -rf "$work/r/d"
     cp -r "$work/r/m" "$work/r/d"
-    (cd "$work/r/d/shard-0-of-2" && eval "$2")
+    (cd "$work/r/d/$shard" && eval "$2")
     local before=$(du -sk "$work/r/d" | cut -f1)
     (ulimit -f 20000; timeout 20 "$certcyl" merge "$work/r/d" --no-plots > /dev/null 2> "$work/merge.err")
     local status=$?
     local after=$(du -sk "$work/r/d" | cut -f1)
-    if [[ $status == 1 && $(cat "$work/merge.err") == "certcyl: merge: shard-0-of-2/$3" && $after == "$before" ]]; then pass "merge refuses $1"
+    if [[ $status == 1 && $(cat "$work/merge.err") == "certcyl: merge: $shard/$3" && $after == "$before" ]]; then pass "merge refuses $1"
     else fail "merge with $1: status $status, $before -> $after kB, $(head -c 300 "$work/merge.err")"; fi
   }
   damage "a link to /dev/zero" "rm hunt.csv && ln -s /dev/zero hunt.csv" \
     "hunt.csv: a symbolic link, not a regular file of the size its manifest lists"
-  damage "a link to the folder" "rm -rf failure_maps && ln -s .. failure_maps" \
-    "failure_maps: a symbolic link, not a regular file of the size its manifest lists"
+  # Shard 1 has no failure maps, so its manifest lists none: the link alone led the copy of
+  # failure_maps into the merged folder, and so into itself.
+  damage "a link to the folder" "ln -s .. failure_maps" \
+    "failure_maps: a symbolic link, not a regular file of the size its manifest lists" shard-1-of-2
   damage "a FIFO" "mkfifo hunt.csv.fifo" \
     "hunt.csv.fifo: a FIFO, not a regular file of the size its manifest lists"
 else
