@@ -505,8 +505,11 @@ class PointProblem {
 // the parallelogram frame of least area when the caller asks for it and it is smaller by a factor
 // of 2^128 or more.
 // Requires Delta != 0.
-//   disc           Dc = D0 = Delta / Delta.Delta, E_1 = Delta x e_j, E_2 = Delta x E_1, k_1 = k_2 = k
-//                  with 4^k min(E_1.E_1, E_2.E_2) >= 1 / mu^2 (S lies in |D| < 1 / mu).
+//   disc           Dc = D0 = Delta / Delta.Delta, E_1 = Delta x e_j, E_2 = Delta x E_1 (orthogonal),
+//                  4^k_i E_i.E_i >= 1 / mu^2 (S lies in |D| < 1 / mu, and
+//                  |D - D0|^2 = sum_i 4^k_i u_i^2 E_i.E_i >= |u|^2 / mu^2). (One power of two for
+//                  both axes made the second |Delta| times longer than needed: on pairs 10^-400
+//                  off touching the direction runs took about a third more steps.)
 //   parallelogram  two functionals F_1, F_2 from the bounds that hold on S (phi(D) < 1 and phi
 //                  bounds each of its terms): |A_j.D| < 2, and |F.D| < |F| / r_j for F orthogonal
 //                  to A_j (F.D = F.(D across A_j), and r_j |D x A_j| / |A_j| < 1), with F among
@@ -539,11 +542,11 @@ class DirectionProblem {
     const Rational mu0 = std::min(q(z.d.AA0) / 4, q(z.d.c0.radius) * q(z.d.c0.radius));
     const Rational mu1 = std::min(q(z.d.AA1) / 4, q(z.d.c1.radius) * q(z.d.c1.radius));
     const Rational mu = std::max(mu0, mu1);  // mu^2
-    // D - D0 = 2^k (u1 E1 + u2 E2), so |D - D0|^2 >= 4^k min(E1.E1, E2.E2) |u|^2.
-    const long k = two_power_covering(std::min(q(d_[0]), q(d_[1])), 1 / mu);
-    k_ = {k, k};
+    // D - D0 = 2^k_1 u1 E1 + 2^k_2 u2 E2 (E1, E2 orthogonal) with 4^k_i E_i.E_i >= 1 / mu^2, so
+    // |D - D0|^2 >= |u|^2 / mu^2.
+    k_ = {two_power_covering(q(d_[0]), 1 / mu), two_power_covering(q(d_[1]), 1 / mu)};
     if (!fitted) return;
-    double best = 2.0 * static_cast<double>(k) + log2(d_[0]) + log2(d_[1]) - 128;  // log2 of the area to beat
+    double best = static_cast<double>(k_[0] + k_[1]) + log2(d_[0]) + log2(d_[1]) - 128;  // log2 of the area to beat
     // The bounds on S: |F.D| < beta, beta^2 = num / den.
     struct Bound {
       Vec3<CGAL::Gmpz> F;
