@@ -46,11 +46,12 @@ BOOST_AUTO_TEST_CASE(wide_range_pairs_are_all_decided_and_right) {
   BOOST_TEST(checked > 1000);
 }
 
-// The corner candidates (detail/cylinder_corner_plane.hpp) decide the binary64 pairs of a huge
-// and a tiny cylinder (scales 2^900 against 2^-900, and 2^960 against 2^-1000) off touching, in
-// every contact type, before any Gmpfr round: without them these took Gmpfr rounds of 2,048 to
-// 4,096 bits or the ellipsoid stage (seconds). Asserted through the result: decided in the gmpfr
-// stage at precision 0, no ellipsoid step.
+// The short ellipsoid runs in the frames of the slab and tube bounds (ellipsoid_probe) and the
+// corner candidates (detail/cylinder_corner_plane.hpp) decide the binary64 pairs of a huge and a
+// tiny cylinder (scales 2^900 against 2^-900, and 2^960 against 2^-1000) off touching, in every
+// contact type, before any Gmpfr round: without them these took Gmpfr rounds of 2,048 to 4,096
+// bits or the ellipsoid stage's rounds (seconds). Asserted through the result: no Gmpfr round,
+// and no ellipsoid step beyond the short runs (24 point and 24 direction steps at 128 bits).
 BOOST_AUTO_TEST_CASE(corner_candidates_decide_huge_against_tiny_pairs) {
   int checked = 0;
   for (const WideCase& c : wide_range_cases()) {
@@ -66,7 +67,8 @@ BOOST_AUTO_TEST_CASE(corner_candidates_decide_huge_against_tiny_pairs) {
         BOOST_TEST(certcyl::recheck::check_cylinder_pair(a, b, r) == "");
         if (r.stage == certcyl::CylinderStage::gmpfr || r.stage == certcyl::CylinderStage::ellipsoid) {
           BOOST_TEST(r.gmpfr_precision == 0);
-          BOOST_TEST(r.counters.ellipsoid_steps == 0u);
+          BOOST_TEST(r.counters.ellipsoid_steps <= 48u);
+          BOOST_TEST(r.ellipsoid_precision <= 128);
         }
       }
     }
@@ -119,6 +121,34 @@ BOOST_AUTO_TEST_CASE(fuzz_needle_is_overlapping) {
     BOOST_TEST(r.answer == Answer::overlapping);
     const auto to_q = [](double x) { return Q(x); };
     BOOST_TEST(certcyl::recheck::check_cylinder_pair(swap ? b.map(to_q) : a.map(to_q), swap ? a.map(to_q) : b.map(to_q), r) == "");
+  }
+}
+
+// Found by a random wide-exponent run of the pair fuzz harness (7 s per query before the fitted
+// frames): a needle a of radius 2^107 and length 2^859, ending near the origin, crossed by a
+// pancake b of radius 2^566 and thickness 47.5 whose slab is tilted by 2/47.5 against the
+// needle's end disc. By construction X = (-3.65625, 42031, 10^6) is interior to both:
+// (X - b.p0).A_b is about 1176 in (0, A_b.A_b = 2260.25), X is about 10^6 from either axis, and
+// (X - a.p1).A_a < 0 < (X - a.p0).A_a. In the frame of b's slab across a's tube the common
+// interior fills a fixed part of the ball: the short runs decide it, with no Gmpfr round.
+BOOST_AUTO_TEST_CASE(needle_crossing_a_pancake_is_decided_by_the_short_runs) {
+  const certcyl::Cylinder<double> a{{-0x1.ap-2, 0x1.b971f3ec2802bp+859, -0x1.9996d1f70baf3p+658},
+                                    {-0x1.d4p+1, 0x1.b8p-2, 0x1.fe0a370d2c607p-195}, 0x1.9727d283c561bp+107};
+  const certcyl::Cylinder<double> b{{0x1.40e199c96f487p-146, -0x1.8cp+5, -0x1.7d0642a08f7b7p-925},
+                                    {0x1.4c880de718d33p-32, -0x1.84p+6, 0x1p+1}, 0x1.9277ddd0b0cc6p+566};
+  const auto to_q = [](double x) { return Q(x); };
+  const Cylinder<Q> qa = a.map(to_q), qb = b.map(to_q);
+  BOOST_REQUIRE(certcyl::detail::strictly_inside_both(certcyl::detail::CylinderPair<Q>::make(qa, qb),
+                                                      certcyl::Point3<Q>{Q(-3.65625), Q(42031), Q(1000000)}));
+  for (const bool swap : {false, true}) {
+    const auto r = swap ? certcyl::certified_cylinder_cylinder(b, a) : certcyl::certified_cylinder_cylinder(a, b);
+    BOOST_TEST_CONTEXT((swap ? "swapped: " : "") << "stage " << to_string(r.stage)) {
+      BOOST_TEST(r.answer == Answer::overlapping);
+      BOOST_TEST(certcyl::recheck::check_cylinder_pair(swap ? qb : qa, swap ? qa : qb, r) == "");
+      BOOST_TEST((r.stage == certcyl::CylinderStage::ellipsoid));
+      BOOST_TEST(r.gmpfr_precision == 0);
+      BOOST_TEST(r.counters.ellipsoid_steps <= 24u);
+    }
   }
 }
 
@@ -234,8 +264,9 @@ BOOST_AUTO_TEST_CASE(ellipsoid_cuts_keep_their_targets) {
       BOOST_TEST_CONTEXT(base.name << " side " << side) {
         BOOST_REQUIRE(r.answer == (side > 0 ? Answer::separated : Answer::overlapping));
         const IntegerPair z(CylinderPair<Q>::make(a, b));
+        for (const bool fitted : {false, true})
         if (side < 0) {
-          const PointProblem points(z);
+          const PointProblem points(z, fitted);
           const std::array<Q, 3> target = points.coordinates(*r.exact_witness());
           for (int t = 0; t < 300; ++t) {
             const DyadicVector<3> y = random_centre<3>(rng);
@@ -247,7 +278,7 @@ BOOST_AUTO_TEST_CASE(ellipsoid_cuts_keep_their_targets) {
             BOOST_TEST(along < 0);
           }
         } else {
-          const DirectionProblem directions(z);
+          const DirectionProblem directions(z, fitted);
           Vec3<Q> D = *r.exact_direction();
           const Vec3<Q> delta = z.delta.map([](const CGAL::Gmpz& x) { return Q(x); });
           if (dot(D, delta) < 0) D = -D;
@@ -263,8 +294,63 @@ BOOST_AUTO_TEST_CASE(ellipsoid_cuts_keep_their_targets) {
       }
     }
   }
-  BOOST_TEST(point_cuts > 1000);
-  BOOST_TEST(minorants > 1000);
+  BOOST_TEST(point_cuts > 2000);
+  BOOST_TEST(minorants > 2000);
+}
+
+// The frames fitted to the slab and tube bounds (PointProblem, DirectionProblem with `fitted`)
+// must hold their targets in the open unit ball, which the completeness proof assumes: the
+// exactly checked interior witness, or separating direction, of every decided pair has
+// coordinates of norm below 1, in the frame taken and in the ball and disc frames. Run on the
+// wide-range pairs and on random binary64 pairs whose exponents spread over the whole range (the
+// pair fuzz harness's kind of input: needles, pancakes, huge against tiny), where both kinds of
+// fitted frame are taken.
+BOOST_AUTO_TEST_CASE(fitted_frames_hold_their_targets) {
+  using namespace certcyl::detail;
+  std::vector<std::pair<Cylinder<Q>, Cylinder<Q>>> pairs;
+  for (const WideCase& c : wide_range_cases())
+    if (c.binary64 && c.expected != Answer::touching) pairs.emplace_back(c.a, c.b);
+  std::mt19937_64 rng(11);
+  const auto number = [&rng]() {
+    if (rng() % 3 != 0) return std::ldexp(static_cast<double>(static_cast<int>(rng() % 256) - 128), -static_cast<int>(rng() % 8));
+    return std::ldexp(std::ldexp(static_cast<double>(rng() >> 11), -53) * (rng() % 2 ? 1 : -1), static_cast<int>(rng() % 2000) - 1000);
+  };
+  for (int i = 0; i < 400; ++i) {
+    std::array<Cylinder<Q>, 2> c;
+    for (Cylinder<Q>& ci : c) {
+      ci.p0 = {Q(number()), Q(number()), Q(number())};
+      ci.p1 = {Q(number()), Q(number()), Q(number())};
+      ci.radius = CGAL::abs(Q(number()));
+    }
+    if (c[0].radius > 0 && c[1].radius > 0 && !(c[0].p0 == c[0].p1) && !(c[1].p0 == c[1].p1)) pairs.emplace_back(c[0], c[1]);
+  }
+  int points = 0, directions = 0, fitted_points = 0, fitted_directions = 0;
+  for (const auto& [a, b] : pairs) {
+    const certcyl::CylinderCylinderResult r = certcyl::certified_cylinder_cylinder(a, b);
+    BOOST_REQUIRE(r.answer != Answer::undecided);
+    const IntegerPair z(CylinderPair<Q>::make(a, b));
+    if (z.delta.x == 0 && z.delta.y == 0 && z.delta.z == 0) continue;
+    for (const bool fitted : {false, true}) {
+      if (r.exact_witness()) {
+        const PointProblem frame(z, fitted);
+        const std::array<Q, 3> u = frame.coordinates(*r.exact_witness());
+        BOOST_TEST(u[0] * u[0] + u[1] * u[1] + u[2] * u[2] < 1);
+        ++points;
+        fitted_points += frame.fitted();
+      }
+      if (r.exact_direction()) {
+        const DirectionProblem frame(z, fitted);
+        const std::optional<std::array<Q, 2>> u = frame.coordinates(*r.exact_direction());
+        BOOST_REQUIRE(u);
+        BOOST_TEST((*u)[0] * (*u)[0] + (*u)[1] * (*u)[1] < 1);
+        ++directions;
+        fitted_directions += frame.fitted();
+      }
+    }
+  }
+  BOOST_TEST_MESSAGE(points << " witnesses (" << fitted_points << " in fitted frames), " << directions << " directions (" << fitted_directions << ")");
+  BOOST_TEST(fitted_points >= 50);
+  BOOST_TEST(fitted_directions >= 50);
 }
 
 // The rounded runs alone (the runs the completeness proof is about, p/8 steps at p bits, central
@@ -278,8 +364,8 @@ BOOST_AUTO_TEST_CASE(rounded_ellipsoid_runs_reach_certificates) {
       const auto [a, b] = moved_pair(base, side);
       const CylinderPair<Q> e = CylinderPair<Q>::make(a, b);
       const IntegerPair z(e);
-      const PointProblem points(z);
-      const DirectionProblem directions(z);
+      const PointProblem points(z, false);
+      const DirectionProblem directions(z, false);
       bool found = false;
       long precision = 0;
       for (long p = 128; !found && p <= (1L << 14); p *= 2) {

@@ -77,6 +77,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "certcyl/certified/detail/cylinder_certificates.hpp"
 #include "certcyl/number_traits.hpp"
@@ -282,16 +283,25 @@ inline long two_power_covering(const Rational& x, const Rational& y) {
   return k;
 }
 
-// 2^sigma times the point or direction base + 2^k (U 2^-s) . basis, with sigma = max(0, s - k)
-// so that the result is an integer vector.
+// The smallest k with 4^k x >= y for integers x, y > 0 (no rational arithmetic: the frames
+// below compare numbers of thousands of bits, where gcds would dominate).
+inline long two_power_covering(const CGAL::Gmpz& x, const CGAL::Gmpz& y) {
+  long k = (static_cast<long>(mpz_sizeinbase(y.mpz(), 2)) - static_cast<long>(mpz_sizeinbase(x.mpz(), 2))) / 2 - 2;
+  const auto covers = [&](long j) { return j >= 0 ? shifted(x, 2 * j) >= y : x >= shifted(y, -2 * j); };
+  while (!covers(k)) ++k;
+  return k;
+}
+
+// 2^sigma times the point or direction base + sum_i 2^k_i (U_i 2^-s) basis_i, with
+// sigma = max(0, max_i (s - k_i)) so that the result is an integer vector.
 template <int n>
-Vec3<CGAL::Gmpz> dyadic_combination(const Vec3<CGAL::Gmpz>& base, long k, const DyadicVector<n>& y,
+Vec3<CGAL::Gmpz> dyadic_combination(const Vec3<CGAL::Gmpz>& base, const std::array<long, n>& k, const DyadicVector<n>& y,
                                     const std::array<Vec3<CGAL::Gmpz>, n>& basis, long& sigma) {
-  const long t = k - y.s;
-  sigma = std::max(0L, -t);
+  sigma = 0;
+  for (int i = 0; i < n; ++i) sigma = std::max(sigma, y.s - k[i]);
   Vec3<CGAL::Gmpz> v{shifted(base.x, sigma), shifted(base.y, sigma), shifted(base.z, sigma)};
   for (int i = 0; i < n; ++i) {
-    const CGAL::Gmpz ui = shifted(y.U[i], sigma + t);
+    const CGAL::Gmpz ui = shifted(y.U[i], sigma + k[i] - y.s);
     v = v + Vec3<CGAL::Gmpz>{ui * basis[i].x, ui * basis[i].y, ui * basis[i].z};
   }
   return v;
@@ -303,26 +313,90 @@ inline CGAL::Gmpfr gmpfr_of(const CGAL::Gmpz& x, long e = 0) {
   return y;
 }
 
-// Points: X(u) = m + 2^k u in the integer frame, m the midpoint of the smaller cylinder K (by
-// A.A/4 + r^2), the target P = int K0 n int K1 (in K) in the unit ball.
+// Points: X(u) = m + sum_i 2^k_i u_i B_i in the integer frame (integer m, integer basis B),
+// chosen so that the target P = int K0 n int K1 lies in the unit ball: the ball frame, or the
+// parallelepiped frame of least volume when the caller asks for it (input spanning over 256
+// binades) and it is smaller by a factor of 2^128 or more. (Its basis of cross products makes
+// each step dearer: on pairs of ordinary span 10^-400 off touching, the runs took up to twice as
+// long in it, so ordinary input keeps the ball frame.)
+//   ball            m the midpoint of the smaller cylinder K (by A.A/4 + r^2), B the unit
+//                   vectors, 4^k >= 2 (A.A/4 + r^2) >= (|A|/2 + r)^2 (P lies in K).
+//   parallelepiped  three independent functionals F_i from the bounds that hold on P:
+//                     slab of K_j   |F.(X - m_j)| <= beta = A_j.A_j / 2 for F = A_j;
+//                     tube of K_j   |F.(X - p_j)| <= beta = r_j |F| for F orthogonal to A_j
+//                                   (X - p_j = t A_j + w, |w| < r_j);
+//                   with F among A_0, A_1, N = A_0 x A_1 (either tube), N x A_0, N x A_1 (or,
+//                   for parallel axes, two vectors orthogonal to both axes). B is the dual basis
+//                   B_1 = F_2 x F_3, B_2 = F_3 x F_1, B_3 = F_1 x F_2 (F_i.B_j = det delta_ij,
+//                   det = F_1.(F_2 x F_3)), m the integer point below (coordinates rounded down)
+//                   the point where every F_i takes its bound's centre, so
+//                   |F_i.(X - m)| <= beta_i + sqrt(3) |F_i| on P, and u_i = F_i.(X - m) / (2^k_i det)
+//                   with 4^k_i det^2 >= 4 Q_i, Q_i = 2 beta_i^2 + 6 F_i.F_i, gives u_i^2 <= 1/4.
+//                   Its volume is 2^(k_1 + k_2 + k_3) det^2 (up to 4 pi / 3).
+// A needle crossing a pancake, or two pancakes crossing (a common interior a few units thick at
+// coordinates of 2^100 and more), is thin in the ball frame, so the runs would need hundreds of
+// bits and thousands of steps; in the frame of its slab and tube bounds it fills a fixed part
+// of the ball.
 class PointProblem {
  public:
-  explicit PointProblem(const IntegerPair& z) : z_(z) {
-    const auto size = [](const CGAL::Gmpz& AA, const CGAL::Gmpz& r) { return Rational(AA) / 4 + Rational(r) * Rational(r); };
-    const Rational s0 = size(z.d.AA0, z.d.c0.radius), s1 = size(z.d.AA1, z.d.c1.radius);
-    m_ = s1 < s0 ? z.m0 + z.delta : z.m0;
-    // (|A|/2 + r)^2 <= 2 (A.A/4 + r^2) <= 4^k
-    k_ = two_power_covering(Rational(1), 2 * std::min(s0, s1));
-    const Vec3<CGAL::Gmpz> ex{1, 0, 0}, ey{0, 1, 0}, ez{0, 0, 1};
-    basis_ = {ex, ey, ez};
+  // `fitted`: also consider the parallelepiped frames.
+  PointProblem(const IntegerPair& z, bool fitted) : z_(z) {
+    const auto q = [](const CGAL::Gmpz& x) { return Rational(x); };
+    const auto size = [&](int i) { return q(AA(i)) / 4 + q(radius(i)) * q(radius(i)); };
+    const int smaller = size(1) < size(0) ? 1 : 0;
+    // The ball frame.
+    m_ = midpoint(smaller);
+    const long k = two_power_covering(Rational(1), 2 * size(smaller));
+    k_ = {k, k, k};
+    F_ = basis_ = {Vec3<CGAL::Gmpz>{1, 0, 0}, Vec3<CGAL::Gmpz>{0, 1, 0}, Vec3<CGAL::Gmpz>{0, 0, 1}};
+    det_ = 1;
+    if (!fitted) return;
+    double best = 3.0 * static_cast<double>(k) - 128;  // log2 of the volume to beat
+    // The bounds on P.
+    std::vector<Bound> bounds;
+    for (int j = 0; j < 2; ++j) bounds.push_back({axis(j), dot(axis(j), midpoint(j) - Point3<CGAL::Gmpz>{0, 0, 0}), AA(j) * AA(j)});
+    const auto tube = [&](int j, const Vec3<CGAL::Gmpz>& F) {
+      const Point3<CGAL::Gmpz>& pj = j == 0 ? z.d.c0.p0 : z.d.c1.p0;
+      bounds.push_back({F, dot(F, pj - Point3<CGAL::Gmpz>{0, 0, 0}), 4 * radius(j) * radius(j) * dot(F, F)});
+    };
+    const Vec3<CGAL::Gmpz> N = cross(axis(0), axis(1));
+    if (!(N.x == 0 && N.y == 0 && N.z == 0)) {
+      tube(0, N);
+      tube(1, N);
+      tube(0, cross(N, axis(0)));
+      tube(1, cross(N, axis(1)));
+    } else {
+      int j = 0;
+      for (int i = 1; i < 3; ++i)
+        if (CGAL::abs(axis(0)[i]) < CGAL::abs(axis(0)[j])) j = i;
+      Vec3<CGAL::Gmpz> e{0, 0, 0};
+      e[j] = 1;
+      const Vec3<CGAL::Gmpz> w1 = cross(axis(0), e), w2 = cross(axis(0), w1);
+      for (int c = 0; c < 2; ++c) {
+        tube(c, w1);
+        tube(c, w2);
+      }
+    }
+    const std::size_t nb = bounds.size();
+    for (std::size_t i1 = 0; i1 < nb; ++i1)
+      for (std::size_t i2 = i1 + 1; i2 < nb; ++i2)
+        for (std::size_t i3 = i2 + 1; i3 < nb; ++i3) consider({&bounds[i1], &bounds[i2], &bounds[i3]}, best);
   }
 
-  // The coordinates u of an input-frame point X (X L = m + 2^k u in the integer frame).
+  // The coordinates u of an input-frame point X: u_i = F_i.(X L - m) / (2^k_i det).
   std::array<Rational, 3> coordinates(const Point3<Rational>& X) const {
     const Rational L(z_.L);
-    const Rational scale = times_two_power(Rational(1), -k_);
-    return {(X.x * L - Rational(m_.x)) * scale, (X.y * L - Rational(m_.y)) * scale, (X.z * L - Rational(m_.z)) * scale};
+    const Vec3<Rational> v{X.x * L - Rational(m_.x), X.y * L - Rational(m_.y), X.z * L - Rational(m_.z)};
+    std::array<Rational, 3> u;
+    for (int i = 0; i < 3; ++i) {
+      const Vec3<Rational> F = F_[i].map([](const CGAL::Gmpz& x) { return Rational(x); });
+      u[i] = dot(v, F) / Rational(det_) * times_two_power(Rational(1), -k_[i]);
+    }
+    return u;
   }
+
+  // Whether a parallelepiped frame was taken (else the ball frame).
+  bool fitted() const { return det_ != 1 || k_[0] != k_[1] || k_[1] != k_[2] || basis_[0] != Vec3<CGAL::Gmpz>{1, 0, 0}; }
 
   // The input-frame point of y.
   Point3<Rational> point(const DyadicVector<3>& y) const {
@@ -363,30 +437,99 @@ class PointProblem {
   }
 
  private:
-  // f(X) <= f(X_y) + g.(X - X_y), X - X_y = 2^k (u - y): on the target (-2^k g).u < (-2^k g).y + f,
-  // with g = G 2^ge and f = F 2^-fe: c = -G 2^(k + ge), overshoot -f.
+  // f(X) <= f(X_y) + g.(X - X_y), X - X_y = sum_i 2^k_i (u_i - y_i) B_i: on the target c.u < c.y + f
+  // with c_i = -2^k_i g.B_i; g = G 2^ge and f = F 2^-fe: c_i = -(G.B_i) 2^(k_i - kmin) 2^(kmin + ge),
+  // overshoot -f.
   EllipsoidCut<3> make_cut(const Vec3<CGAL::Gmpz>& G, long ge, const CGAL::Gmpz& F, long fe, long bits) const {
     EllipsoidCut<3> k;
-    k.C = {-G.x, -G.y, -G.z};
-    k.e = k_ + ge;
+    const long kmin = std::min({k_[0], k_[1], k_[2]});
+    for (int i = 0; i < 3; ++i) k.C[i] = -shifted(dot(G, basis_[i]), k_[i] - kmin);
+    k.e = kmin + ge;
     GmpfrPrecision scope(bits);
     k.overshoot = gmpfr_of(-F, -fe);
     return k;
   }
 
+  // |F.X - centre| <= beta on P, beta4 = 4 beta^2.
+  struct Bound {
+    Vec3<CGAL::Gmpz> F;
+    CGAL::Gmpz centre;
+    CGAL::Gmpz beta4;
+  };
+
+  const CGAL::Gmpz& radius(int i) const { return i == 0 ? z_.d.c0.radius : z_.d.c1.radius; }
+  const CGAL::Gmpz& AA(int i) const { return i == 0 ? z_.d.AA0 : z_.d.AA1; }
+  const Vec3<CGAL::Gmpz>& axis(int i) const { return i == 0 ? z_.d.A0 : z_.d.A1; }
+  Point3<CGAL::Gmpz> midpoint(int i) const { return i == 0 ? z_.m0 : z_.m0 + z_.delta; }
+
+  // Takes the parallelepiped frame of three bounds when it is independent and its volume,
+  // sum_i k_i + 2 log2 |det|, is below `best`.
+  void consider(const std::array<const Bound*, 3>& b, double& best) {
+    const std::array<Vec3<CGAL::Gmpz>, 3> B{cross(b[1]->F, b[2]->F), cross(b[2]->F, b[0]->F), cross(b[0]->F, b[1]->F)};
+    const CGAL::Gmpz det = dot(b[0]->F, B[0]);
+    if (det == 0) return;
+    const CGAL::Gmpz det2 = det * det;
+    std::array<long, 3> ks{};
+    double volume = 2.0 * static_cast<double>(mpz_sizeinbase(det.mpz(), 2));
+    for (int i = 0; i < 3; ++i) {
+      // 4 Q_i = 2 beta4_i + 24 F_i.F_i
+      ks[i] = two_power_covering(det2, 2 * b[i]->beta4 + 24 * dot(b[i]->F, b[i]->F));
+      volume += static_cast<double>(ks[i]);
+    }
+    if (!(volume < best)) return;
+    // m: F_i.m = centre_i, that is m = sum_i centre_i B_i / det, rounded down.
+    Vec3<CGAL::Gmpz> num{0, 0, 0};
+    for (int i = 0; i < 3; ++i) num = num + Vec3<CGAL::Gmpz>{b[i]->centre * B[i].x, b[i]->centre * B[i].y, b[i]->centre * B[i].z};
+    const auto floor_div = [&det](const CGAL::Gmpz& x) {
+      CGAL::Gmpz r;
+      mpz_fdiv_q(r.mpz(), x.mpz(), det.mpz());
+      return r;
+    };
+    best = volume;
+    m_ = {floor_div(num.x), floor_div(num.y), floor_div(num.z)};
+    F_ = {b[0]->F, b[1]->F, b[2]->F};
+    basis_ = B;
+    det_ = det;
+    k_ = ks;
+  }
+
   const IntegerPair& z_;
   Point3<CGAL::Gmpz> m_;
-  long k_ = 0;
-  std::array<Vec3<CGAL::Gmpz>, 3> basis_;
+  std::array<long, 3> k_{};
+  std::array<Vec3<CGAL::Gmpz>, 3> F_, basis_;  // X - m = sum_i 2^k_i u_i B_i, F_i.B_j = det delta_ij
+  CGAL::Gmpz det_;
 };
 
-// Directions: D(u) = D0 + 2^k (u1 E1 + u2 E2) on the plane D.Delta = 1 (integer frame), the
-// target S = { phi(D) < 1 } in the unit ball. Requires Delta != 0.
+// Directions: D(u) = Dc + 2^k_1 u_1 E_1 + 2^k_2 u_2 E_2 on the plane D.Delta = 1 (integer frame,
+// E_i orthogonal to Delta), the target S = { phi(D) < 1 } in the unit ball: the disc frame, or
+// the parallelogram frame of least area when the caller asks for it and it is smaller by a factor
+// of 2^128 or more.
+// Requires Delta != 0.
+//   disc           Dc = D0 = Delta / Delta.Delta, E_1 = Delta x e_j, E_2 = Delta x E_1 (orthogonal),
+//                  4^k_i E_i.E_i >= 1 / mu^2 (S lies in |D| < 1 / mu, and
+//                  |D - D0|^2 = sum_i 4^k_i u_i^2 E_i.E_i >= |u|^2 / mu^2). (One power of two for
+//                  both axes made the second |Delta| times longer than needed: on pairs 10^-400
+//                  off touching the direction runs took about a third more steps.)
+//   parallelogram  two functionals F_1, F_2 from the bounds that hold on S (phi(D) < 1 and phi
+//                  bounds each of its terms): |A_j.D| < 2, and |F.D| < |F| / r_j for F orthogonal
+//                  to A_j (F.D = F.(D across A_j), and r_j |D x A_j| / |A_j| < 1), with F among
+//                  A_0, A_1, N = A_0 x A_1, N x A_j, Delta x A_j. E_1 = Delta x F_2,
+//                  E_2 = F_1 x Delta (F_i.E_j = d delta_ij, d = F_1.(Delta x F_2)), Dc = (F_1 x F_2) / s,
+//                  s = (F_1 x F_2).Delta = -d (F_i.Dc = 0, Dc.Delta = 1); on S,
+//                  |u_i| = |F_i.D| / (2^k_i |d|) < beta_i / (2^k_i |d|), and 4^k_i d^2 >= 2 beta_i^2
+//                  gives u_i^2 < 1/2. Its area is 2^(k_1 + k_2) |d| |Delta| (up to pi).
+// A needle's separating directions lie within about 1/|A| of the plane orthogonal to its axis:
+// thin in the disc frame, fat in the frame of the needle's slab bound.
 class DirectionProblem {
  public:
-  explicit DirectionProblem(const IntegerPair& z) : z_(z) {
+  // `fitted`: also consider the parallelogram frames.
+  DirectionProblem(const IntegerPair& z, bool fitted) : z_(z) {
     const Vec3<CGAL::Gmpz>& delta = z.delta;
-    G_ = dot(delta, delta);
+    const auto q = [](const CGAL::Gmpz& x) { return Rational(x); };
+    const auto log2 = [](const CGAL::Gmpz& x2) { return 0.5 * static_cast<double>(mpz_sizeinbase(x2.mpz(), 2)); };  // of sqrt(x2)
+    // The disc frame.
+    scale_ = dot(delta, delta);
+    base_ = delta;
     int j = 0;
     for (int i = 1; i < 3; ++i)
       if (CGAL::abs(delta[i]) < CGAL::abs(delta[j])) j = i;
@@ -394,48 +537,97 @@ class DirectionProblem {
     ej[j] = 1;
     E_[0] = cross(delta, ej);
     E_[1] = cross(delta, E_[0]);
-    const auto q = [](const CGAL::Gmpz& x) { return Rational(x); };
+    F_ = E_;
+    d_ = {dot(E_[0], E_[0]), dot(E_[1], E_[1])};
     const Rational mu0 = std::min(q(z.d.AA0) / 4, q(z.d.c0.radius) * q(z.d.c0.radius));
     const Rational mu1 = std::min(q(z.d.AA1) / 4, q(z.d.c1.radius) * q(z.d.c1.radius));
     const Rational mu = std::max(mu0, mu1);  // mu^2
-    // D - D0 = 2^k (u1 E1 + u2 E2), so |D - D0|^2 >= 4^k min(E1.E1, E2.E2) |u|^2.
-    k_ = two_power_covering(std::min(q(dot(E_[0], E_[0])), q(dot(E_[1], E_[1]))), 1 / mu);
+    // D - D0 = 2^k_1 u1 E1 + 2^k_2 u2 E2 (E1, E2 orthogonal) with 4^k_i E_i.E_i >= 1 / mu^2, so
+    // |D - D0|^2 >= |u|^2 / mu^2.
+    k_ = {two_power_covering(q(d_[0]), 1 / mu), two_power_covering(q(d_[1]), 1 / mu)};
+    if (!fitted) return;
+    double best = static_cast<double>(k_[0] + k_[1]) + log2(d_[0]) + log2(d_[1]) - 128;  // log2 of the area to beat
+    // The bounds on S: |F.D| < beta, beta^2 = num / den.
+    struct Bound {
+      Vec3<CGAL::Gmpz> F;
+      CGAL::Gmpz num, den;
+    };
+    std::vector<Bound> bounds;
+    const auto tube = [&](int i, const Vec3<CGAL::Gmpz>& F) {
+      if (F.x == 0 && F.y == 0 && F.z == 0) return;
+      const CGAL::Gmpz& r = i == 0 ? z.d.c0.radius : z.d.c1.radius;
+      bounds.push_back({F, dot(F, F), r * r});
+    };
+    const Vec3<CGAL::Gmpz> N = cross(z.d.A0, z.d.A1);
+    for (int i = 0; i < 2; ++i) {
+      const Vec3<CGAL::Gmpz>& A = i == 0 ? z.d.A0 : z.d.A1;
+      bounds.push_back({A, CGAL::Gmpz(4), CGAL::Gmpz(1)});
+      tube(i, N);
+      tube(i, cross(N, A));
+      tube(i, cross(delta, A));
+    }
+    const double delta_size = log2(scale_);
+    for (std::size_t i1 = 0; i1 < bounds.size(); ++i1)
+      for (std::size_t i2 = i1 + 1; i2 < bounds.size(); ++i2) {
+        const Bound& b1 = bounds[i1];
+        const Bound& b2 = bounds[i2];
+        const std::array<Vec3<CGAL::Gmpz>, 2> E{cross(delta, b2.F), cross(b1.F, delta)};
+        const CGAL::Gmpz d = dot(b1.F, E[0]);
+        if (d == 0) continue;
+        const CGAL::Gmpz d2 = d * d;  // 4^k d^2 den >= 2 num
+        const std::array<long, 2> ks{two_power_covering(d2 * b1.den, 2 * b1.num), two_power_covering(d2 * b2.den, 2 * b2.num)};
+        const double area = static_cast<double>(ks[0] + ks[1]) + log2(d * d) + delta_size;
+        if (!(area < best)) continue;
+        best = area;
+        // Dc = (F_1 x F_2) / s with s = -d: base (F_1 x F_2) sign(s), scale |s|.
+        const Vec3<CGAL::Gmpz> c = cross(b1.F, b2.F);
+        base_ = d > 0 ? Vec3<CGAL::Gmpz>(-c) : c;
+        scale_ = CGAL::abs(d);
+        E_ = E;
+        F_ = {b1.F, b2.F};
+        d_ = {d, d};
+        k_ = ks;
+      }
   }
 
-  // The coordinates u of the direction D / (D.Delta) (nullopt when D.Delta = 0).
+  // The coordinates u of the direction D / (D.Delta) (nullopt when D.Delta = 0):
+  // u_i = F_i.(D / D.Delta - Dc) / (2^k_i d_i).
   std::optional<std::array<Rational, 2>> coordinates(const Vec3<Rational>& D) const {
     const auto q = [](const Vec3<CGAL::Gmpz>& v) { return v.map([](const CGAL::Gmpz& x) { return Rational(x); }); };
-    const Vec3<Rational> delta = q(z_.delta);
-    const Rational dd = dot(D, delta);
+    const Rational dd = dot(D, q(z_.delta));
     if (dd == 0) return std::nullopt;
-    const Vec3<Rational> v = D / dd - delta / Rational(G_);  // 2^k (u1 E1 + u2 E2)
-    const Vec3<Rational> E1 = q(E_[0]), E2 = q(E_[1]);
-    const Rational scale = times_two_power(Rational(1), -k_);
-    return std::array<Rational, 2>{dot(v, E1) / dot(E1, E1) * scale, dot(v, E2) / dot(E2, E2) * scale};
+    const Vec3<Rational> v = D / dd - q(base_) / Rational(scale_);
+    std::array<Rational, 2> u;
+    for (int i = 0; i < 2; ++i) u[i] = dot(v, q(F_[i])) / Rational(d_[i]) * times_two_power(Rational(1), -k_[i]);
+    return u;
   }
 
-  // 2^sigma G D(y) (a positive multiple of D(y), integer), G = Delta.Delta.
+  // Whether a parallelogram frame was taken (else the disc frame).
+  bool fitted() const { return F_ != E_; }
+
+  // 2^sigma s D(y) (a positive multiple of D(y), integer), s = scale_ (Dc = base_ / s).
   Vec3<CGAL::Gmpz> direction(const DyadicVector<2>& y, long& sigma) const {
-    const std::array<Vec3<CGAL::Gmpz>, 2> basis{G_ * E_[0], G_ * E_[1]};
-    return dyadic_combination<2>(z_.delta, k_, y, basis, sigma);
+    const std::array<Vec3<CGAL::Gmpz>, 2> basis{scale_ * E_[0], scale_ * E_[1]};
+    return dyadic_combination<2>(base_, k_, y, basis, sigma);
   }
 
   // The cut l(D) = V.D < 1 for w_i rounded from `bits`-bit values, at the direction Ds =
-  // 2^sigma G D_y. With eta_exponent > 0, *cuts_off tells whether l(D_y) > 1 - 2^-eta_exponent
+  // 2^sigma s D_y (s = scale_). With eta_exponent > 0, *cuts_off tells whether l(D_y) > 1 - 2^-eta_exponent
   // (exactly). The overshoot l(D_y) - 1 is approximate (fast runs).
   EllipsoidCut<2> minorant_cut(const Vec3<CGAL::Gmpz>& Ds, long sigma, long bits, long eta_exponent = 0, bool* cuts_off = nullptr) const {
     long h = 0;
     const Vec3<CGAL::Gmpz> Vz = minorant(Ds, bits, h);
     // l(D_y) = V.D_y = Vz.Ds 2^-(h + sigma) / G.
-    const CGAL::Gmpz lD = dot(Vz, Ds), unit = shifted(G_, h + sigma);
+    const CGAL::Gmpz lD = dot(Vz, Ds), unit = shifted(scale_, h + sigma);
     if (cuts_off) {
       // l(D_y) > 1 - 2^-eta  <=>  2^eta lD > (2^eta - 1) unit
       *cuts_off = shifted(lD, eta_exponent) > shifted(unit, eta_exponent) - unit;
     }
     EllipsoidCut<2> k;
-    // l(D(u)) = V.D0 + 2^k (u1 V.E1 + u2 V.E2): c = (Vz.E1, Vz.E2) 2^(k - h).
-    k.C = {dot(Vz, E_[0]), dot(Vz, E_[1])};
-    k.e = k_ - h;
+    // l(D(u)) = V.Dc + sum_i 2^k_i u_i V.E_i: c_i = (Vz.E_i) 2^(k_i - h).
+    const long kmin = std::min(k_[0], k_[1]);
+    k.C = {shifted(dot(Vz, E_[0]), k_[0] - kmin), shifted(dot(Vz, E_[1]), k_[1] - kmin)};
+    k.e = kmin - h;
     GmpfrPrecision scope(bits);
     k.overshoot = (gmpfr_of(lD) - gmpfr_of(unit)) / gmpfr_of(unit);
     return k;
@@ -508,9 +700,11 @@ class DirectionProblem {
 
  private:
   const IntegerPair& z_;
-  CGAL::Gmpz G_;
-  std::array<Vec3<CGAL::Gmpz>, 2> E_;
-  long k_ = 0;
+  Vec3<CGAL::Gmpz> base_;
+  CGAL::Gmpz scale_;                        // Dc = base_ / scale_, scale_ > 0
+  std::array<Vec3<CGAL::Gmpz>, 2> E_, F_;  // D - Dc = sum_i 2^k_i u_i E_i, F_i.E_j = d_i delta_ij
+  std::array<CGAL::Gmpz, 2> d_;
+  std::array<long, 2> k_{};
 };
 
 }  // namespace certcyl::detail
