@@ -1,5 +1,5 @@
 // Validation at every query's entry point: each certified query (point, line, ray and segment
-// against circular and elliptic cylinders, triangle) with each kind of invalid operand, in
+// against circular and elliptic cylinders, triangle, cylinder pair) with each kind of invalid operand, in
 // Rational and in double, throws the InvalidInput the command gives for the same input; valid
 // extreme operands pass.
 #define BOOST_TEST_MODULE validation
@@ -10,6 +10,7 @@
 #include <string>
 #include <utility>
 
+#include "certcyl/certified/cylinder_cylinder.hpp"
 #include "certcyl/certified/line_cylinder.hpp"
 #include "certcyl/certified/point_cylinder.hpp"
 #include "certcyl/certified/triangle_cylinder.hpp"
@@ -179,6 +180,29 @@ BOOST_AUTO_TEST_CASE(point_queries_validate_their_operands) {
   check_elliptic_operand([](const auto& e) { certified_point_cylinder(as_in(good_point, e), e); }, "point, elliptic");
   BOOST_TEST(message_of([&] { certified_point_cylinder(Point3<double>{not_a_number, 0, 0}, good_cylinder); }) == "point[0]: non-finite number");
   BOOST_TEST(message_of([&] { certified_point_cylinder(Point3<double>{0, 0, -infinity}, good_elliptic); }) == "point[2]: non-finite number");
+}
+
+// The pair query names its operands a and b: the messages of the other queries under those
+// fields, in both number types, and those of the command's reader.
+BOOST_AUTO_TEST_CASE(pair_query_validates_its_operands) {
+  const auto renamed = [](const std::string& message, const std::string& field) { return field + message.substr(std::string("cylinder").size()); };
+  for (const BadCylinder& bad : bad_cylinders) {
+    BOOST_TEST(message_of([&] { certified_cylinder_cylinder(bad.c, good_cylinder); }) == renamed(bad.message, "a"));
+    BOOST_TEST(message_of([&] { certified_cylinder_cylinder(good_cylinder, bad.c); }) == renamed(bad.message, "b"));
+    BOOST_TEST(message_of([&] { certified_cylinder_cylinder(exact(bad.c), exact(good_cylinder)); }) == renamed(bad.message, "a"));
+    BOOST_TEST(message_of([&] { certified_cylinder_cylinder(exact(good_cylinder), exact(bad.c)); }) == renamed(bad.message, "b"));
+  }
+  BOOST_TEST(message_of([&] { certified_cylinder_cylinder(Cylinder<double>{{0, 0, 0}, {0, 0, 2}, infinity}, good_cylinder); }) ==
+             "a.radius: non-finite number");
+  BOOST_TEST(message_of([&] { certified_cylinder_cylinder(good_cylinder, Cylinder<double>{{0, 0, 0}, {0, not_a_number, 2}, 1}); }) ==
+             "b.p1[1]: non-finite number");
+  BOOST_TEST(message_of([&] { certified_cylinder_cylinder(good_cylinder, good_cylinder); }) == "<none>");
+  BOOST_TEST(message_of([&] { certified_cylinder_cylinder(exact(good_cylinder), exact(good_cylinder)); }) == "<none>");
+  JsonReader reader;
+  BOOST_TEST(message_of([&] { reader.cylinder(json::parse(R"({"p0": [0,0,0], "p1": [0,0,2], "radius": -1})"), "b"); }) ==
+             message_of([] { certified_cylinder_cylinder(good_cylinder, Cylinder<double>{{0, 0, 0}, {0, 0, 2}, -1}); }));
+  BOOST_TEST(message_of([&] { reader.cylinder(json::parse(R"({"p0": [1,2,3], "p1": [1,2,3], "radius": 1})"), "a"); }) ==
+             message_of([] { certified_cylinder_cylinder(Cylinder<double>{{1, 2, 3}, {1, 2, 3}, 1}, good_cylinder); }));
 }
 
 BOOST_AUTO_TEST_CASE(binary64_and_rational_overloads_agree) {

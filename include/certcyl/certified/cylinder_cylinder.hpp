@@ -1756,16 +1756,11 @@ inline CylinderCylinderResult certified_cylinder_cylinder(const Cylinder<Rationa
 // anywhere); faster, since the rational input is built only when an exact stage needs it.
 inline CylinderCylinderResult certified_cylinder_cylinder(const Cylinder<double>& a, const Cylinder<double>& b,
                                                           const CylinderCylinderOptions& options = {}) {
-  const auto check = [](const Cylinder<double>& c, const char* field) {
-    for (double x : {c.p0.x, c.p0.y, c.p0.z, c.p1.x, c.p1.y, c.p1.z, c.radius})
-      if (!std::isfinite(x)) throw InvalidInput(field, "non-finite value");
-    if (!(c.radius > 0)) throw InvalidInput(join_field(field, "radius"), "must be positive");
-    if (c.p0 == c.p1) throw InvalidInput(field, "zero-length axis (p0 == p1)");
-  };
   CylinderCylinderResult r;
   if (detail::quick_answer(a, b, options, r)) return r;  // valid input only
-  check(a, "a");
-  check(b, "b");
+  // The messages of every other query and of the command ("a.radius: must be positive, got -1").
+  validate(a, "a");
+  validate(b, "b");
   r = detail::CylinderCylinderSolver(a, b, options).run();
   return r;
 }
