@@ -269,20 +269,6 @@ struct IntegerPair {
   }
 };
 
-// The smallest k with 4^k x >= y for rationals x, y > 0.
-inline long two_power_covering(const Rational& x, const Rational& y) {
-  const Rational ratio = y / x;
-  long k = (static_cast<long>(mpz_sizeinbase(mpq_numref(ratio.mpq()), 2)) - static_cast<long>(mpz_sizeinbase(mpq_denref(ratio.mpq()), 2))) / 2 - 2;
-  const auto pow4 = [](long j) {
-    Rational r(1);
-    if (j >= 0) mpq_mul_2exp(r.mpq(), r.mpq(), static_cast<mp_bitcnt_t>(2 * j));
-    else mpq_div_2exp(r.mpq(), r.mpq(), static_cast<mp_bitcnt_t>(-2 * j));
-    return r;
-  };
-  while (pow4(k) * x < y) ++k;
-  return k;
-}
-
 // The smallest k with 4^k x >= y for integers x, y > 0 (no rational arithmetic: the frames
 // below compare numbers of thousands of bits, where gcds would dominate).
 inline long two_power_covering(const CGAL::Gmpz& x, const CGAL::Gmpz& y) {
@@ -290,6 +276,21 @@ inline long two_power_covering(const CGAL::Gmpz& x, const CGAL::Gmpz& y) {
   const auto covers = [&](long j) { return j >= 0 ? shifted(x, 2 * j) >= y : x >= shifted(y, -2 * j); };
   while (!covers(k)) ++k;
   return k;
+}
+
+// The same for rationals x, y > 0: 4^k x >= y iff 4^k num(x) den(y) >= num(y) den(x).
+inline long two_power_covering(const Rational& x, const Rational& y) {
+  return two_power_covering(x.numerator() * y.denominator(), y.numerator() * x.denominator());
+}
+
+// v x e_j, e_j the unit vector of v's smallest coordinate: orthogonal to v, and nonzero when v is.
+inline Vec3<CGAL::Gmpz> cross_with_least_axis(const Vec3<CGAL::Gmpz>& v) {
+  int j = 0;
+  for (int i = 1; i < 3; ++i)
+    if (CGAL::abs(v[i]) < CGAL::abs(v[j])) j = i;
+  Vec3<CGAL::Gmpz> e{0, 0, 0};
+  e[j] = 1;
+  return cross(v, e);
 }
 
 // 2^sigma times the point or direction base + sum_i 2^k_i (U_i 2^-s) basis_i, with
@@ -366,12 +367,7 @@ class PointProblem {
       tube(0, cross(N, axis(0)));
       tube(1, cross(N, axis(1)));
     } else {
-      int j = 0;
-      for (int i = 1; i < 3; ++i)
-        if (CGAL::abs(axis(0)[i]) < CGAL::abs(axis(0)[j])) j = i;
-      Vec3<CGAL::Gmpz> e{0, 0, 0};
-      e[j] = 1;
-      const Vec3<CGAL::Gmpz> w1 = cross(axis(0), e), w2 = cross(axis(0), w1);
+      const Vec3<CGAL::Gmpz> w1 = cross_with_least_axis(axis(0)), w2 = cross(axis(0), w1);
       for (int c = 0; c < 2; ++c) {
         tube(c, w1);
         tube(c, w2);
@@ -396,7 +392,7 @@ class PointProblem {
   }
 
   // Whether a parallelepiped frame was taken (else the ball frame).
-  bool fitted() const { return det_ != 1 || k_[0] != k_[1] || k_[1] != k_[2] || basis_[0] != Vec3<CGAL::Gmpz>{1, 0, 0}; }
+  bool fitted() const { return fitted_; }
 
   // The input-frame point of y.
   Point3<Rational> point(const DyadicVector<3>& y) const {
@@ -491,11 +487,13 @@ class PointProblem {
     basis_ = B;
     det_ = det;
     k_ = ks;
+    fitted_ = true;
   }
 
   const IntegerPair& z_;
   Point3<CGAL::Gmpz> m_;
   std::array<long, 3> k_{};
+  bool fitted_ = false;
   std::array<Vec3<CGAL::Gmpz>, 3> F_, basis_;  // X - m = sum_i 2^k_i u_i B_i, F_i.B_j = det delta_ij
   CGAL::Gmpz det_;
 };
@@ -530,12 +528,7 @@ class DirectionProblem {
     // The disc frame.
     scale_ = dot(delta, delta);
     base_ = delta;
-    int j = 0;
-    for (int i = 1; i < 3; ++i)
-      if (CGAL::abs(delta[i]) < CGAL::abs(delta[j])) j = i;
-    Vec3<CGAL::Gmpz> ej{0, 0, 0};
-    ej[j] = 1;
-    E_[0] = cross(delta, ej);
+    E_[0] = cross_with_least_axis(delta);
     E_[1] = cross(delta, E_[0]);
     F_ = E_;
     d_ = {dot(E_[0], E_[0]), dot(E_[1], E_[1])};
@@ -576,7 +569,7 @@ class DirectionProblem {
         if (d == 0) continue;
         const CGAL::Gmpz d2 = d * d;  // 4^k d^2 den >= 2 num
         const std::array<long, 2> ks{two_power_covering(d2 * b1.den, 2 * b1.num), two_power_covering(d2 * b2.den, 2 * b2.num)};
-        const double area = static_cast<double>(ks[0] + ks[1]) + log2(d * d) + delta_size;
+        const double area = static_cast<double>(ks[0] + ks[1]) + log2(d2) + delta_size;
         if (!(area < best)) continue;
         best = area;
         // Dc = (F_1 x F_2) / s with s = -d: base (F_1 x F_2) sign(s), scale |s|.
@@ -587,6 +580,7 @@ class DirectionProblem {
         F_ = {b1.F, b2.F};
         d_ = {d, d};
         k_ = ks;
+        fitted_ = true;
       }
   }
 
@@ -603,7 +597,7 @@ class DirectionProblem {
   }
 
   // Whether a parallelogram frame was taken (else the disc frame).
-  bool fitted() const { return F_ != E_; }
+  bool fitted() const { return fitted_; }
 
   // 2^sigma s D(y) (a positive multiple of D(y), integer), s = scale_ (Dc = base_ / s).
   Vec3<CGAL::Gmpz> direction(const DyadicVector<2>& y, long& sigma) const {
@@ -705,6 +699,7 @@ class DirectionProblem {
   std::array<Vec3<CGAL::Gmpz>, 2> E_, F_;  // D - Dc = sum_i 2^k_i u_i E_i, F_i.E_j = d_i delta_ij
   std::array<CGAL::Gmpz, 2> d_;
   std::array<long, 2> k_{};
+  bool fitted_ = false;
 };
 
 }  // namespace certcyl::detail
