@@ -99,6 +99,25 @@ def front(points):
     return sorted(p for p in points if not any(o[0] < p[0] and o[1] <= p[1] for o in points if o is not p))
 
 
+def pareto_axes(ax, query, ylabel):
+    """Labels and grid of one Pareto panel (speed on x, an error measure on y)."""
+    ax.set_xlabel("median ns per query", fontsize=6.5)
+    ax.set_ylabel(ylabel, fontsize=6.5)
+    ax.set_title(QUERY_TITLES.get(query, query), fontsize=7.5)
+    ax.tick_params(labelsize=6)
+    ax.grid(alpha=0.3)
+
+
+def pareto_legend(fig, axes, used, title):
+    """Blanks the unused panels, and adds the legend of method kinds and the front, and the title."""
+    for ax in list(axes.flat)[used:]:
+        ax.axis("off")
+    handles = [plt.Line2D([], [], color=c, marker="o", ls="", ms=4, label=k) for k, c in KIND_COLOURS.items()]
+    handles.append(plt.Line2D([], [], color="grey", lw=0.7, label="Pareto front (its methods named)"))
+    fig.legend(handles=handles, loc="lower center", ncol=7, fontsize=6, frameon=False)
+    fig.suptitle(title, fontsize=8)
+
+
 def label_front(ax, pts, floor=None):
     """Names the points `pts` ((x, y, label), drawn at max(y, floor)) beside them, to the right
     on the left part of the axes and to the left on the right part, one name per line from the
@@ -254,17 +273,8 @@ def pareto(summary, out):
             ax.step([p[0] for p in best], [max(p[1], floor) for p in best], where="post", color="grey", lw=0.7, zorder=0)
             label_front(ax, [(p[0], p[1], p[2]) for p in best], floor)
         ax.axhline(floor, color="grey", lw=0.5, ls=":")
-        ax.set_xlabel("median ns per query", fontsize=6.5)
-        ax.set_ylabel(f"disagreement rate (0 drawn at {floor:g})", fontsize=6.5)
-        ax.set_title(QUERY_TITLES.get(q, q), fontsize=7.5)
-        ax.tick_params(labelsize=6)
-        ax.grid(alpha=0.3)
-    for ax in list(axes.flat)[len(queries):]:
-        ax.axis("off")
-    handles = [plt.Line2D([], [], color=c, marker="o", ls="", ms=4, label=k) for k, c in KIND_COLOURS.items()]
-    handles.append(plt.Line2D([], [], color="grey", lw=0.7, label="Pareto front (its methods named)"))
-    fig.legend(handles=handles, loc="lower center", ncol=7, fontsize=6, frameon=False)
-    fig.suptitle("speed against error (per query, every method)", fontsize=8)
+        pareto_axes(ax, q, f"disagreement rate (0 drawn at {floor:g})")
+    pareto_legend(fig, axes, len(queries), "speed against error (per query, every method)")
     save(fig, out, "pareto",
          "One panel per query, one dot per method, coloured by kind: further left is faster, lower is right more often (a rate "
          "of 0 is drawn on the dotted line); the grey staircase joins the methods no other method beats on both speed and error, "
@@ -454,17 +464,8 @@ def t_error(rows, out):
         if best:
             ax.step([p[0] for p in best], [p[1] for p in best], where="post", color="grey", lw=0.7, zorder=0)
             label_front(ax, best)
-        ax.set_xlabel("median ns per query", fontsize=6.5)
-        ax.set_ylabel("99th percentile of 1 + t error (ulps)", fontsize=6.5)
-        ax.set_title(QUERY_TITLES.get(q, q), fontsize=7.5)
-        ax.tick_params(labelsize=6)
-        ax.grid(alpha=0.3)
-    for ax in list(axes.flat)[len(queries):]:
-        ax.axis("off")
-    handles = [plt.Line2D([], [], color=c, marker="o", ls="", ms=4, label=k) for k, c in KIND_COLOURS.items()]
-    handles.append(plt.Line2D([], [], color="grey", lw=0.7, label="Pareto front (its methods named)"))
-    fig.legend(handles=handles, loc="lower center", ncol=7, fontsize=6, frameon=False)
-    fig.suptitle("speed against the error of the entry parameter t (line queries)", fontsize=8)
+        pareto_axes(ax, q, "99th percentile of 1 + t error (ulps)")
+    pareto_legend(fig, axes, len(queries), "speed against the error of the entry parameter t (line queries)")
     save(fig, out, "pareto_t_error",
          "One panel per line query, one dot per method, coloured by kind: further left is faster, lower has a smaller 99th "
          "percentile of the t error; the grey staircase joins the methods no other beats on both, and only those are named.",
