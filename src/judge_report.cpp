@@ -50,6 +50,20 @@ std::string percent(double p) {
   return buf;
 }
 
+// One CSV field as RFC 4180 writes it: as is, or in double quotes (each quote doubled) when it
+// holds a comma, a quote, a line break or leading or trailing space. The method's name is free
+// text (a command, a label, a file's name).
+std::string csv_field(const std::string& s) {
+  const bool plain = s.find_first_of(",\"\r\n") == std::string::npos && (s.empty() || (s.front() != ' ' && s.back() != ' '));
+  if (plain) return s;
+  std::string q = "\"";
+  for (const char c : s) {
+    if (c == '"') q += '"';
+    q += c;
+  }
+  return q + '"';
+}
+
 // Sort key of a counterexample: the size of its gap (the midpoint of the enclosure; unbounded last).
 double gap_size(const Case& c) {
   if (!std::isfinite(c.gap_lo) || !std::isfinite(c.gap_hi)) return std::numeric_limits<double>::infinity();
@@ -119,7 +133,7 @@ void write_results(const fs::path& dir, const std::string& method, const std::ve
                 "f.pos", "f.neg", "mism.", "undec.", "error", "inval.", "uncert", "failure rate [95% CI]");
   table << line;
   auto row = [&](const std::string& query, const std::string& family, const Counts& n) {
-    csv << method << ',' << query << ',' << family << ',' << n.cases;
+    csv << csv_field(method) << ',' << csv_field(query) << ',' << csv_field(family) << ',' << n.cases;
     for (const char* o : kOutcomes) csv << ',' << n.at(o);
     csv << ',' << n.failures();
     std::string rate = "-";

@@ -75,14 +75,49 @@ struct Scratch {
   }
 };
 
+// The records of a CSV text as RFC 4180 reads them: fields split at commas outside double
+// quotes, "" a quote inside them, a line break inside quotes part of the field.
+std::vector<std::vector<std::string>> csv_records(const std::string& text) {
+  std::vector<std::vector<std::string>> records;
+  std::vector<std::string> record;
+  std::string field;
+  bool quoted = false, any = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c != '"') {
+        field += c;
+      } else if (i + 1 < text.size() && text[i + 1] == '"') {
+        field += '"', ++i;
+      } else {
+        quoted = false;
+      }
+    } else if (c == '"') {
+      BOOST_REQUIRE_MESSAGE(field.empty(), "a quote inside an unquoted CSV field");
+      quoted = any = true;
+    } else if (c == ',') {
+      record.push_back(field), field.clear();
+      any = true;
+    } else if (c == '\n') {
+      if (any || !field.empty()) record.push_back(field), records.push_back(record);
+      record.clear(), field.clear(), any = false;
+    } else if (c != '\r') {
+      field += c, any = true;
+    }
+  }
+  BOOST_REQUIRE_MESSAGE(!quoted, "an unterminated quoted CSV field");
+  if (any || !field.empty()) record.push_back(field), records.push_back(record);
+  return records;
+}
+
 // families.csv as (query, family) -> column -> value.
 std::map<std::pair<std::string, std::string>, std::map<std::string, std::string>> families_csv(const fs::path& p) {
   std::map<std::pair<std::string, std::string>, std::map<std::string, std::string>> out;
-  const auto rows = lines_of(slurp(p));
+  const auto rows = csv_records(slurp(p));
   BOOST_REQUIRE(!rows.empty());
-  const auto header = cli::detail::split(rows[0], ',');
+  const auto& header = rows[0];
   for (std::size_t i = 1; i < rows.size(); ++i) {
-    const auto cells = cli::detail::split(rows[i], ',');
+    const auto& cells = rows[i];
     BOOST_REQUIRE(cells.size() == header.size());
     std::map<std::string, std::string> row;
     for (std::size_t j = 0; j < cells.size(); ++j) row[header[j]] = cells[j];
@@ -205,6 +240,37 @@ BOOST_AUTO_TEST_CASE(answers_file_scored_per_family) {
     if (count(row, "failures") == count(row, "cases") - count(row, "uncertified") && count(row, "failures") > 0)
       BOOST_TEST(std::stod(row.at("failure_rate_hi95")) == 1.0);
   }
+}
+
+BOOST_AUTO_TEST_CASE(method_names_with_commas_and_quotes_are_quoted_in_the_csv) {
+  // The method's name is free text: a label, or the command of --exec. families.csv quotes it
+  // (RFC 4180) so that its columns stay in place.
+  Scratch s;
+  BOOST_TEST_REQUIRE(s.run(kCertcyl + " cases --query line_cylinder --size tiny > cases.jsonl").status == 0);
+  const std::string command = kCertcyl + " query --method robust_double | sed \"s/,/,/\"";
+  const std::string label = "mine, \"fast\" v2";
+  const Run exec = s.run(kCertcyl + " judge --cases cases.jsonl --name exec --exec '" + command + "'");
+  BOOST_TEST_REQUIRE(exec.status == 0, exec.err);
+  const Run labelled = s.run(kCertcyl + " judge --cases cases.jsonl --name label --answers results/exec/answers.jsonl --label '" + label + "'");
+  BOOST_TEST_REQUIRE(labelled.status == 0, labelled.err);
+  for (const auto& [name, method] : {std::pair{"exec", command}, std::pair{"label", label}}) {
+    const fs::path file = s.dir / "results" / name / "families.csv";
+    const auto records = csv_records(slurp(file));
+    BOOST_TEST_REQUIRE(records.size() > 2u);
+    BOOST_TEST(records[0][0] == "method");
+    for (std::size_t i = 1; i < records.size(); ++i) {
+      BOOST_TEST(records[i].size() == records[0].size(), name << " record " << i);
+      BOOST_TEST(records[i][0] == method);
+      BOOST_TEST(records[i][1] == "line_cylinder");
+    }
+    const auto csv = families_csv(file);
+    BOOST_TEST(count(csv.at({"line_cylinder", "all"}), "cases") == static_cast<long>(lines_of(slurp(s / "cases.jsonl")).size()));
+  }
+  // The same counts either way: only the method's name differs.
+  auto exec_rows = families_csv(s.dir / "results/exec/families.csv"), label_rows = families_csv(s.dir / "results/label/families.csv");
+  for (auto* rows : {&exec_rows, &label_rows})
+    for (auto& [key, row] : *rows) row.erase("method");
+  BOOST_TEST((exec_rows == label_rows));
 }
 
 BOOST_AUTO_TEST_CASE(bad_answers_files_name_the_line) {
