@@ -73,7 +73,9 @@ EberlyParameters eberly_parameters(const json& in, EberlyVariant variant) {
       p.parallel_threshold = m->get<double>();
       p.parallel_test = p.parallel_threshold > 0 ? ParallelTest::threshold : ParallelTest::exact_zero;
     } else {
-      throw InvalidInput(field, "unknown parameter");
+      throw InvalidInput(field, "unknown parameter (expected: perpendicular_bisections, line_search_bisections, "
+                                "max_line_searches, axis_tests, perpendicular_tests, other_direction_tests, "
+                                "parallel_tests, parallel_threshold)");
     }
   }
   p.validate();

@@ -3,7 +3,9 @@
 #define BOOST_TEST_MODULE cli_bad_input
 #include <boost/test/unit_test.hpp>
 
+#include <array>
 #include <sstream>
+#include <vector>
 
 #include "query.hpp"
 
@@ -217,6 +219,48 @@ BOOST_AUTO_TEST_CASE(members_the_query_does_not_read) {
   QueryOptions eberly;
   eberly.method = "eberly_corrected";
   BOOST_TEST(answer_line(pair, eberly, 1)["answer"] == "separated");
+}
+
+BOOST_AUTO_TEST_CASE(operand_members_list_the_valid_names) {
+  // A misspelt member inside an operand object is refused with the names that operand takes,
+  // for every operand kind (the cylinder lists the names of the form its other members chose).
+  const std::string cyl = R"("cylinder": {"p0": [0,0,0], "p1": [0,0,2], "radius": 1})";
+  const std::string ell = R"("elliptic_cylinder": {"base": [0,0,0], "a": [1,0,0], "b": [0,1,0], "c": [0,0,2]})";
+  const std::string line = R"("line": {"origin": [5,0,1], "direction": [0,1,0]})";
+  const std::string ray = R"("ray": {"origin": [5,0,1], "direction": [1,0,0]})";
+  const std::string segment = R"("segment": {"p0": [5,0,1], "p1": [6,0,1]})";
+  const auto error_for = [&](const std::string& query, const std::string& a, const std::string& b) {
+    return error_of(sandwiched(R"({"id": 1, "query": ")" + query + R"(", )" + a + ", " + b + "}"));
+  };
+  BOOST_TEST(error_for("line_cylinder", R"("line": {"origin": [5,0,1], "dir": [1,0,0]})", cyl) ==
+             "line.dir: unexpected member (expected: origin, direction)");
+  BOOST_TEST(error_for("ray_cylinder", R"("ray": {"orign": [5,0,1], "direction": [1,0,0]})", cyl) ==
+             "ray.orign: unexpected member (expected: origin, direction)");
+  BOOST_TEST(error_for("segment_cylinder", R"("segment": {"p0": [5,0,1], "p1": [6,0,1], "p2": [7,0,1]})", cyl) ==
+             "segment.p2: unexpected member (expected: p0, p1)");
+  BOOST_TEST(error_for("line_elliptic_cylinder", line,
+                       R"("elliptic_cylinder": {"base": [0,0,0], "a": [1,0,0], "b": [0,1,0], "c": [0,0,2], "d": 1})") ==
+             "elliptic_cylinder.d: unexpected member (expected: base, a, b, c)");
+  BOOST_TEST(error_for("ray_elliptic_cylinder", R"("ray": {"origin": [5,0,1], "direction": [1,0,0], "t": 0})", ell) ==
+             "ray.t: unexpected member (expected: origin, direction)");
+  BOOST_TEST(error_for("segment_elliptic_cylinder", R"("segment": {"p0": [5,0,1], "q1": [6,0,1]})", ell) ==
+             "segment.q1: unexpected member (expected: p0, p1)");
+  BOOST_TEST(error_for("line_cylinder", line, R"("cylinder": {"p0": [0,0,0], "p1": [0,0,2], "radius": 1, "height": 2})") ==
+             "cylinder.height: unexpected member (endpoint form: p0, p1, radius)");
+  // The good forms of the same operands are answered.
+  for (const auto& [query, a, b] : std::vector<std::array<std::string, 3>>{{"line_cylinder", line, cyl},
+                                                                           {"ray_elliptic_cylinder", ray, ell},
+                                                                           {"segment_cylinder", segment, cyl}})
+    BOOST_TEST(answer_line(R"({"id": 1, "query": ")" + query + R"(", )" + a + ", " + b + "}", QueryOptions{}, 1)["answer"] ==
+               "separated");
+  // An Eberly parameter that does not exist: the valid ones are listed.
+  QueryOptions eberly;
+  eberly.method = "eberly_corrected";
+  const std::string pair = R"({"id": 2, "query": "cylinder_cylinder", "a": {"p0": [0,0,0], "p1": [0,0,1], "radius": 1}, )"
+                           R"("b": {"p0": [5,0,0], "p1": [5,0,1], "radius": 1}, "parameters": {"max_linesearches": 3}})";
+  BOOST_TEST(error_of(answer_line(pair, eberly, 1)) ==
+             "parameters.max_linesearches: unknown parameter (expected: perpendicular_bisections, line_search_bisections, "
+             "max_line_searches, axis_tests, perpendicular_tests, other_direction_tests, parallel_tests, parallel_threshold)");
 }
 
 BOOST_AUTO_TEST_CASE(meta_is_passed_through) {

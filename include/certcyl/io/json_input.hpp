@@ -19,8 +19,9 @@
 //   segment             {"p0": P, "p1": P}
 //   triangle            [P, P, P]
 // Every error is an InvalidInput whose field is the dotted path given by the caller plus the
-// member ("a.radius", "triangle[1][2]"). Unknown members of an operand object are rejected, so
-// a misspelt key is not silently ignored.
+// member ("a.radius", "triangle[1][2]"). Unknown members of an operand object are rejected,
+// listing the valid names ("l.orgin: unexpected member (expected: origin, direction)"), so a
+// misspelt key is not silently ignored.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -184,7 +185,11 @@ class JsonReader {
     for (auto it = j.begin(); it != j.end(); ++it) {
       bool known = false;
       for (const char* a : allowed) known = known || it.key() == a;
-      if (!known) throw InvalidInput(join_field(field, it.key()), "unexpected member" + (hint.empty() ? std::string() : " " + hint));
+      if (known) continue;
+      // The valid names: the caller's hint when the object has several forms, else the list.
+      std::string names;
+      for (const char* a : allowed) names += (names.empty() ? "" : ", ") + std::string(a);
+      throw InvalidInput(join_field(field, it.key()), "unexpected member " + (hint.empty() ? "(expected: " + names + ")" : hint));
     }
   }
 
