@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "certcyl/certified/line_cylinder.hpp"
-#include "certcyl/study/gap.hpp"
+#include "study/gap.hpp"
 
 using namespace certcyl;
 

@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "certcyl/study/families.hpp"
+#include "study/families.hpp"
 #include "fuzz_input.hpp"
 #include "study.hpp"
 

@@ -8,7 +8,7 @@
 #include "arrays.hpp"
 #include "batch.hpp"
 #include "certcyl/certified/line_cylinder.hpp"
-#include "certcyl/study/gap.hpp"
+#include "study/gap.hpp"
 
 namespace certcyl::python {
 namespace {

@@ -10,7 +10,7 @@
 #include "certcyl/certified/cylinder_cylinder.hpp"
 #include "certcyl/certified/point_cylinder.hpp"
 #include "certcyl/certified/triangle_cylinder.hpp"
-#include "certcyl/study/gap.hpp"
+#include "study/gap.hpp"
 
 namespace certcyl::python {
 namespace {

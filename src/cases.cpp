@@ -10,8 +10,8 @@
 #include <set>
 #include <stdexcept>
 
-#include "certcyl/study/families.hpp"
-#include "certcyl/study/gap.hpp"
+#include "study/families.hpp"
+#include "study/gap.hpp"
 #include "query.hpp"
 #include "study_internal.hpp"
 

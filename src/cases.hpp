@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "certcyl/answer.hpp"
-#include "certcyl/study/instance.hpp"
+#include "study/instance.hpp"
 
 namespace certcyl::cli {
 

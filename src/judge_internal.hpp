@@ -24,7 +24,7 @@
 #include <poll.h>
 
 #include "cases.hpp"
-#include "certcyl/study/methods.hpp"
+#include "study/methods.hpp"
 
 namespace certcyl::cli::judging {
 

@@ -9,8 +9,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "certcyl/study/families.hpp"
-#include "certcyl/study/gap.hpp"
+#include "study/families.hpp"
+#include "study/gap.hpp"
 #include "study_internal.hpp"
 #include "study_files.hpp"
 

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <mutex>
 
-#include "certcyl/study/gap.hpp"
+#include "study/gap.hpp"
 #include "study_internal.hpp"
 
 namespace certcyl::cli::detail {

@@ -34,8 +34,8 @@
 
 #include <unistd.h>
 
-#include "certcyl/study/instance.hpp"
-#include "certcyl/study/methods.hpp"
+#include "study/instance.hpp"
+#include "study/methods.hpp"
 #include "study.hpp"
 
 namespace certcyl::cli::detail {

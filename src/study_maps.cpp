@@ -5,8 +5,8 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "certcyl/study/families.hpp"
-#include "certcyl/study/gap.hpp"
+#include "study/families.hpp"
+#include "study/gap.hpp"
 #include "study_internal.hpp"
 #include "study_files.hpp"
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "certcyl/dispatch.hpp"
-#include "certcyl/study/methods.hpp"
+#include "study/methods.hpp"
 
 namespace certcyl::cli {
 

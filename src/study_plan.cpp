@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "certcyl/study/families.hpp"
+#include "study/families.hpp"
 #include "query.hpp"
 #include "study_internal.hpp"
 

@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "certcyl/study/families.hpp"
+#include "study/families.hpp"
 #include "study_internal.hpp"
 
 namespace certcyl::cli::detail {

@@ -23,8 +23,8 @@
 #include <unistd.h>
 
 #include "cases.hpp"
-#include "certcyl/study/families.hpp"
-#include "certcyl/study/gap.hpp"
+#include "study/families.hpp"
+#include "study/gap.hpp"
 #include "study_internal.hpp"
 #include "study_methods.hpp"
 

@@ -15,9 +15,9 @@
 #include <set>
 #include <sstream>
 
-#include "certcyl/study/families.hpp"
-#include "certcyl/study/gap.hpp"
-#include "certcyl/study/methods.hpp"
+#include "study/families.hpp"
+#include "study/gap.hpp"
+#include "study/methods.hpp"
 #include "study.hpp"
 #include "study_methods.hpp"
 

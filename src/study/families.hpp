@@ -1,4 +1,4 @@
-// certcyl/study/families.hpp -- the inputs of the robustness study: the hard-case families of
+// study/families.hpp -- the inputs of the robustness study: the hard-case families of
 // design note section 6 for every query, and uniform random inputs.
 //
 // Every family places a configuration at a degeneracy and then moves one input coordinate (the
@@ -47,7 +47,7 @@
 #include <string>
 #include <vector>
 
-#include "certcyl/study/instance.hpp"
+#include "study/instance.hpp"
 
 namespace certcyl::study {
 

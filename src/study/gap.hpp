@@ -1,4 +1,4 @@
-// certcyl/study/gap.hpp -- the certified answer of a study instance and its certified signed
+// study/gap.hpp -- the certified answer of a study instance and its certified signed
 // gap, a number whose sign is the answer's (< 0 separated, = 0 touching, > 0 overlapping) and
 // whose size measures how far the input is from a change of answer.
 //
@@ -37,7 +37,7 @@
 #include "certcyl/certified/cylinder_cylinder.hpp"
 #include "certcyl/certified/line_cylinder.hpp"
 #include "certcyl/certified/triangle_cylinder.hpp"
-#include "certcyl/study/instance.hpp"
+#include "study/instance.hpp"
 
 namespace certcyl::study {
 namespace detail {

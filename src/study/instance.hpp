@@ -1,4 +1,4 @@
-// certcyl/study/instance.hpp -- one input of the robustness study and its certified truth.
+// study/instance.hpp -- one input of the robustness study and its certified truth.
 //
 // An instance is a query kind and a flat vector of binary64 coordinates. Every method of the
 // study reads exactly these values (a number type other than double converts them with

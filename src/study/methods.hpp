@@ -1,4 +1,4 @@
-// certcyl/study/methods.hpp -- the methods the robustness study judges, and how an answer is
+// study/methods.hpp -- the methods the robustness study judges, and how an answer is
 // judged against the certified one.
 //
 // A method is one algorithm in one number type (or one peer library in its own arithmetic)
@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "certcyl/answer.hpp"
-#include "certcyl/study/instance.hpp"
+#include "study/instance.hpp"
 
 namespace certcyl::study {
 

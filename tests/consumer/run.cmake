@@ -10,6 +10,18 @@ endif()
 if(NOT EXISTS ${prefix}/include/certcyl/certcyl.hpp)
   message(FATAL_ERROR "headers not installed")
 endif()
+# The study's headers (src/study/) belong to the command, not to the library: none is installed,
+# and no installed header includes one.
+if(EXISTS ${prefix}/include/certcyl/study OR EXISTS ${prefix}/include/study)
+  message(FATAL_ERROR "the study's headers were installed")
+endif()
+file(GLOB_RECURSE installed_headers ${prefix}/include/*)
+foreach(header ${installed_headers})
+  file(STRINGS ${header} study_includes REGEX "#[ \t]*include[ \t]*[\"<](certcyl/)?study/")
+  if(study_includes)
+    message(FATAL_ERROR "${header} includes a study header: ${study_includes}")
+  endif()
+endforeach()
 execute_process(COMMAND ${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/build
   -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
