@@ -306,3 +306,40 @@ BOOST_AUTO_TEST_CASE(random_cross_check) {
     if (gen == 2) BOOST_TEST(stages.semi_static > 0u);
   }
 }
+
+// The per-sign double-double stage (EscalatingTriangleSigns) against the whole decision in
+// double-double and the Gmpq decision: whenever the whole double-double stage decides, the
+// per-sign stage decides too (the same trees and bounds on the same control flow), with the
+// same answer and facts; every decision it makes equals Gmpq's; without a sign left by double,
+// it is the static stage itself.
+BOOST_AUTO_TEST_CASE(per_sign_double_double_equals_the_whole_stage) {
+  const unsigned long seed = 555;
+  std::cout << "per_sign_double_double: seed " << seed << "\n";
+  std::mt19937_64 g(seed);
+  std::uniform_int_distribution<int> side(0, 2);
+  int whole = 0, per_sign = 0, escalated = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const int s = side(g);
+    const Instance in = i % 4 == 0 ? random_instance(g) : near_instance(g, s == 0 ? 0.0 : (s == 1 ? 1e-12 : -1e-12));
+    const detail::SlabDecision ref = gmpq_decision(in.t, in.c);
+    const detail::EscalatedTriangleDecision e = detail::escalating_decide_triangle_cylinder(in.t, in.c);
+    const auto w = detail::double_double_decide_triangle_cylinder(in.t, in.c);
+    BOOST_TEST_CONTEXT("instance " << i) {
+      BOOST_TEST_REQUIRE(e.in_static_range);
+      if (w) {
+        ++whole;
+        BOOST_TEST_REQUIRE(e.decision.has_value());
+      }
+      if (e.decision) {
+        ++per_sign;
+        escalated += e.escalated;
+        BOOST_TEST_REQUIRE(e.decision->answer == ref.answer);
+        BOOST_TEST_REQUIRE((e.decision->where == ref.where && e.decision->inside_vertex == ref.inside_vertex));
+      }
+      if (!e.escalated) BOOST_TEST_REQUIRE(e.decision.has_value() == detail::static_decide_triangle_cylinder(in.t, in.c).has_value());
+    }
+  }
+  std::cout << "  decided by the whole double-double stage " << whole << ", by the per-sign stage " << per_sign
+            << " (escalated " << escalated << ")\n";
+  BOOST_TEST(escalated > 1000);
+}

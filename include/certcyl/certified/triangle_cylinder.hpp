@@ -17,9 +17,11 @@
 //   classify_triangle_cylinder(T, C, counter)   the answer only, filtered in four stages:
 //       a semi-static double filter (detail/triangle_static_filter.hpp: each sign decided in
 //       double when it exceeds an error bound derived from its expression tree; binary64 input,
-//       or Rational input whose numbers are all binary64), the same decision in double-double
-//       with bounds from the same trees (detail/triangle_double_double.hpp; binary64 input of
-//       magnitudes 0 or 2^-24 .. 2^60), then Interval_nt, then exact arithmetic (Mpzf for
+//       or Rational input whose numbers are all binary64) in which each sign the double bound
+//       leaves undecided is evaluated again, that test alone, in double-double with bounds
+//       from the same trees (detail/triangle_double_double.hpp; binary64 input of magnitudes 0
+//       or 2^-24 .. 2^60; the whole decision in double-double where the double stage's range
+//       is left), then Interval_nt, then exact arithmetic (Mpzf for
 //       binary64 input, Gmpq otherwise). A TriangleFilterStages counter
 //       records which stage decided; a FilterCounter counts the exact fall-backs.
 //   certified_triangle_cylinder(T, C)           the answer (filtered, as above) and its
@@ -197,14 +199,19 @@ SlabDecision decide_interval_then_exact(const Triangle<In>& T, const Cylinder<In
 
 inline SlabDecision decide_filtered(const Triangle<double>& T, const Cylinder<double>& C, TriangleFilterStages& stages) {
   ++stages.calls;
-  if (const std::optional<SlabDecision> d = static_decide_triangle_cylinder(T, C)) {
-    ++stages.semi_static;
-    return *d;
+  // Double, with each sign it cannot decide evaluated again in double-double on its own.
+  const EscalatedTriangleDecision e = escalating_decide_triangle_cylinder(T, C);
+  if (e.decision) {
+    ++(e.escalated ? stages.double_double : stages.semi_static);
+    return *e.decision;
   }
-  if (const std::optional<SlabDecision> d = double_double_decide_triangle_cylinder(T, C)) {
-    ++stages.double_double;
-    return *d;
-  }
+  // Outside the static stage's range, the whole decision in double-double. (Inside it, the
+  // whole double-double decision would stop at the same sign: same trees, same bounds.)
+  if (!e.in_static_range)
+    if (const std::optional<SlabDecision> d = double_double_decide_triangle_cylinder(T, C)) {
+      ++stages.double_double;
+      return *d;
+    }
   return decide_interval_then_exact<CGAL::Mpzf>(T, C, stages);
 }
 

@@ -59,10 +59,23 @@
 //   u - O(k^2 u^2)). Hence |v^ - v| < B, and |v^| > B implies sign(v^) = sign(v).
 //   Overflow: every intermediate value is at most (1 + u)^k N' 2^(150 D) < 2^1000.
 // Outside the window (a magnitude above 2^150 or below 2^-150) the stage is skipped.
+//
+// A line in or near a cap plane. There s = d.A and sigma = x.A (x = w or w1) are both small,
+// and cap_excess, of the order of s^2 |x|^2, can sink below the double-double bound (about
+// 2^-92 of the magnitudes) although s and sigma themselves are known to about 2^-47 of their
+// values. Since A x (x x d) = s x - sigma d,
+//   cap_excess = s^2 (x.x - r^2) - 2 s sigma (x.d) + sigma^2 (d.d),
+// and the double-double stage evaluates this form in CGAL::Interval_nt (directed rounding,
+// an enclosure by construction) from the enclosures s in [s^ - B_s, s^ + B_s], sigma in
+// [sigma^ - B_sigma, sigma^ + B_sigma] (s^, sigma^ the double-double values, hi + lo enclosed
+// exactly; B their proved double-double bounds, dot_ld and dot_ll) and the exact leaves x, d, r
+// (each hi + lo, enclosed exactly). A sign is taken when the enclosure excludes 0; otherwise
+// the exact stage decides. Overflow gives an infinite, undeciding enclosure.
 // Exact zeros (tangencies, lines parallel to the axis or to the caps, ends on a cap plane) are
 // never decided here: |v^| > B > 0 fails for v^ = 0, and those cases go to the next stage.
 #pragma once
 
+#include <CGAL/Interval_nt.h>
 #include <CGAL/Mpzf.h>
 #include <CGAL/enum.h>
 
@@ -384,10 +397,35 @@ class StaticCircularSigns {
       depth_ = std::max(depth_, Depth::double_double);
       if (v.hi() > bound) return CGAL::POSITIVE;
       if (v.hi() < -bound) return CGAL::NEGATIVE;
+      if (s == kCapEx0 || s == kCapEx1) {
+        const CGAL::Sign f = factored_cap_excess_sign(s == kCapEx0 ? dd_->w : dd_->w1);
+        if (f != CGAL::ZERO) return f;
+      }
     }
     if (!exact_) exact_ = make_leaves<CGAL::Mpzf>([](double x, double y) { return CGAL::Mpzf(x) - CGAL::Mpzf(y); });
     depth_ = Depth::exact;
     return slot_value(s, *exact_).sign();
+  }
+
+  // The sign of cap_excess(A, x, d, r) when its double-double value is within its bound, from
+  // the factored form (header comment, "A line in or near a cap plane"); ZERO when that
+  // enclosure does not decide either.
+  CGAL::Sign factored_cap_excess_sign(const SV3<DD>& x) const {
+    using Q = CircularPolynomials<DD>;
+    const CircularLeaves<DD>& l = *dd_;
+    const DD s = Q::dot(l.d, l.A), sigma = Q::dot(x, l.A);
+    const double es = line_dd_bounds::dot_ld.C * dd_len_pow_[1] * dd_dir_pow_[1];
+    const double esigma = line_dd_bounds::dot_ll.C * dd_len_pow_[2];
+    using I = CGAL::Interval_nt<false>;
+    const CGAL::Protect_FPU_rounding<true> upward;  // no double-double operation below
+    auto point = [](const DD& v) { return I(v.v.x[0]) + I(v.v.x[1]); };
+    auto vec = [&](const SV3<DD>& v) { return SV3<I>{point(v.x), point(v.y), point(v.z)}; };
+    const SV3<I> xi = vec(x), di = vec(l.d);
+    const I si = point(s) + I(-es, es), gi = point(sigma) + I(-esigma, esigma), r = point(l.r);
+    const I V = CGAL::square(si) * (sdot(xi, xi) - CGAL::square(r)) - I(2) * si * gi * sdot(xi, di) + CGAL::square(gi) * sdot(di, di);
+    if (V.inf() > 0) return CGAL::POSITIVE;
+    if (V.sup() < 0) return CGAL::NEGATIVE;
+    return CGAL::ZERO;
   }
 
   // The leaves in T, each difference formed by sub(x, y) (exact for DD and Mpzf).

@@ -60,11 +60,24 @@ namespace certcyl::detail {
 // plane (X, w from the formula above). The kind selects the static filter's error bound.
 enum class SlabKind : int { vertex = 0, crossing = 1 };
 
+// Which point of the decision a sign test is about, for sign policies that re-evaluate one test
+// in another arithmetic (triangle_static_filter.hpp): its kind, and where it comes from, `src`:
+// vertex i is i (0..2); the crossing of the edge v_i v_j with the plane h = 0 (h = s: plane 0,
+// h = A.A - s: plane 1), h_i > 0 > h_j, is 3 + 9 plane + 3 i + j; -1 when not recorded.
+struct SlabRef {
+  SlabKind kind = SlabKind::vertex;
+  int src = -1;
+};
+inline constexpr int slab_crossing_src(int plane, int pos, int neg) { return 3 + 9 * plane + 3 * pos + neg; }
+
 template <class NT>
 struct SlabPoint {
   Vec3<NT> X;  // the point is P + X / w
   NT w;        // w > 0
   SlabKind kind = SlabKind::vertex;
+  int src = -1;  // SlabRef::src
+
+  SlabRef ref() const { return {kind, src}; }
 };
 
 // A convex polygon (possibly degenerate: repeated or collinear vertices) in boundary order.
@@ -145,8 +158,7 @@ NT slab_gap(const NT& det, const Vec3<NT>& V, const NT& r) {
 // CGAL::Uncertain_conversion_exception).
 struct ExactSigns {
   template <class NT>
-  CGAL::Sign operator()(const NT& v, SlabTest, SlabKind = SlabKind::vertex, SlabKind = SlabKind::vertex,
-                        SlabKind = SlabKind::vertex) const {
+  CGAL::Sign operator()(const NT& v, SlabTest, SlabRef = {}, SlabRef = {}, SlabRef = {}) const {
     return nt::sign(v);
   }
 };
@@ -189,15 +201,19 @@ SlabPolygon<NT> clip_to_slab(const SlabInput<NT>& in, const std::array<NT, 3>& s
   SlabPolygon<NT> S;
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3;
-    if (lo[i] != CGAL::NEGATIVE && hi[i] != CGAL::NEGATIVE) S.push({in.a[i], in.one, SlabKind::vertex});
+    if (lo[i] != CGAL::NEGATIVE && hi[i] != CGAL::NEGATIVE) S.push({in.a[i], in.one, SlabKind::vertex, i});
     const bool cross0 = lo[i] * lo[j] == CGAL::NEGATIVE;
     const bool cross1 = hi[i] * hi[j] == CGAL::NEGATIVE;
     const auto crossing0 = [&] {
-      return lo[i] == CGAL::POSITIVE ? slab_crossing(in.a[i], s[i], in.a[j], s[j]) : slab_crossing(in.a[j], s[j], in.a[i], s[i]);
+      SlabPoint<NT> x = lo[i] == CGAL::POSITIVE ? slab_crossing(in.a[i], s[i], in.a[j], s[j]) : slab_crossing(in.a[j], s[j], in.a[i], s[i]);
+      x.src = lo[i] == CGAL::POSITIVE ? slab_crossing_src(0, i, j) : slab_crossing_src(0, j, i);
+      return x;
     };
     const auto crossing1 = [&] {
-      return hi[i] == CGAL::POSITIVE ? slab_crossing(in.a[i], top[i], in.a[j], top[j])
-                                     : slab_crossing(in.a[j], top[j], in.a[i], top[i]);
+      SlabPoint<NT> x = hi[i] == CGAL::POSITIVE ? slab_crossing(in.a[i], top[i], in.a[j], top[j])
+                                                : slab_crossing(in.a[j], top[j], in.a[i], top[i]);
+      x.src = hi[i] == CGAL::POSITIVE ? slab_crossing_src(1, i, j) : slab_crossing_src(1, j, i);
+      return x;
     };
     // Along the edge from v_i, the plane on v_i's side comes first.
     if (lo[i] == CGAL::NEGATIVE) {
@@ -222,7 +238,7 @@ bool axis_pierces(const SlabPolygon<NT>& S, const Vec3<NT>& A, const Signs& sign
   for (int i = 0; i < S.n; ++i) {
     const SlabPoint<NT>& a = S.p[i];
     const SlabPoint<NT>& b = S.p[(i + 1) % S.n];
-    const CGAL::Sign sg = sign(slab_det(a, b, A), SlabTest::pierce, a.kind, b.kind);
+    const CGAL::Sign sg = sign(slab_det(a, b, A), SlabTest::pierce, a.ref(), b.ref());
     has_positive |= sg == CGAL::POSITIVE;
     has_negative |= sg == CGAL::NEGATIVE;
     if (has_positive && has_negative) return false;
@@ -237,8 +253,8 @@ template <class NT, class Signs>
 EdgeMinimum locate_edge_minimum(const SlabPoint<NT>& a, const SlabPoint<NT>& b, const Vec3<NT>& V, const Vec3<NT>& A,
                                 const Signs& sign) {
   // Slope at a >= 0 (this includes V = 0: q constant along the edge).
-  if (sign(slab_slope(a, V, A), SlabTest::slope, a.kind, b.kind, a.kind) != CGAL::NEGATIVE) return EdgeMinimum::at_a;
-  if (sign(slab_slope(b, V, A), SlabTest::slope, a.kind, b.kind, b.kind) != CGAL::POSITIVE) return EdgeMinimum::at_b;
+  if (sign(slab_slope(a, V, A), SlabTest::slope, a.ref(), b.ref(), a.ref()) != CGAL::NEGATIVE) return EdgeMinimum::at_a;
+  if (sign(slab_slope(b, V, A), SlabTest::slope, a.ref(), b.ref(), b.ref()) != CGAL::POSITIVE) return EdgeMinimum::at_b;
   return EdgeMinimum::inside;
 }
 
@@ -248,17 +264,17 @@ CGAL::Sign edge_minimum_minus(const SlabPoint<NT>& a, const SlabPoint<NT>& b, co
                               const Signs& sign) {
   const Vec3<NT> V = slab_edge_V(a, b, in.A);
   switch (locate_edge_minimum(a, b, V, in.A, sign)) {
-    case EdgeMinimum::at_a: return sign(slab_point_minus_R(a, in.A, R), SlabTest::point, a.kind);
-    case EdgeMinimum::at_b: return sign(slab_point_minus_R(b, in.A, R), SlabTest::point, b.kind);
+    case EdgeMinimum::at_a: return sign(slab_point_minus_R(a, in.A, R), SlabTest::point, a.ref());
+    case EdgeMinimum::at_b: return sign(slab_point_minus_R(b, in.A, R), SlabTest::point, b.ref());
     case EdgeMinimum::inside: break;
   }
-  return sign(slab_gap(slab_det(a, b, in.A), V, in.r), SlabTest::gap, a.kind, b.kind);
+  return sign(slab_gap(slab_det(a, b, in.A), V, in.r), SlabTest::gap, a.ref(), b.ref());
 }
 
 // sign(min over S of q  -  R), S not empty.
 template <class NT, class Signs>
 CGAL::Sign polygon_minimum_minus(const SlabPolygon<NT>& S, const SlabInput<NT>& in, const NT& R, const Signs& sign) {
-  if (S.n == 1) return sign(slab_point_minus_R(S.p[0], in.A, R), SlabTest::point, S.p[0].kind);
+  if (S.n == 1) return sign(slab_point_minus_R(S.p[0], in.A, R), SlabTest::point, S.p[0].ref());
   CGAL::Sign best = CGAL::POSITIVE;
   // A 2-gon is one segment: its second edge is the first reversed.
   const int edges = S.n == 2 ? 1 : S.n;
@@ -285,8 +301,8 @@ SlabAxial<NT> slab_axial_data(const SlabInput<NT>& in, const Signs& sign) {
   for (int i = 0; i < 3; ++i) {
     ax.s[i] = slab_axial(in.a[i], in.A);
     ax.top[i] = slab_axial_top(ax.AA, ax.s[i]);
-    ax.lo[i] = sign(ax.s[i], SlabTest::axial);
-    ax.hi[i] = sign(ax.top[i], SlabTest::axial_top);
+    ax.lo[i] = sign(ax.s[i], SlabTest::axial, SlabRef{SlabKind::vertex, i});
+    ax.hi[i] = sign(ax.top[i], SlabTest::axial_top, SlabRef{SlabKind::vertex, i});
   }
   return ax;
 }
@@ -310,8 +326,8 @@ SlabDecision decide_slab(const SlabInput<NT>& in, const Signs& sign) {
   const NT R = slab_radius_term(in.r, ax.AA);
   for (int i = 0; i < 3; ++i) {
     if (ax.lo[i] == CGAL::POSITIVE && ax.hi[i] == CGAL::POSITIVE &&
-        sign(slab_point_minus_R(SlabPoint<NT>{in.a[i], in.one, SlabKind::vertex}, in.A, R), SlabTest::point,
-             SlabKind::vertex) == CGAL::NEGATIVE)
+        sign(slab_point_minus_R(SlabPoint<NT>{in.a[i], in.one, SlabKind::vertex, i}, in.A, R), SlabTest::point,
+             SlabRef{SlabKind::vertex, i}) == CGAL::NEGATIVE)
       return {Answer::overlapping, where, i};
   }
 

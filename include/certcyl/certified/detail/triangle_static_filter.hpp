@@ -177,14 +177,20 @@ class BoundedSigns {
     for (int d = 1; d < kMaxDegree + 1; ++d) power_[d] = power_[d - 1] * M2;
   }
 
-  CGAL::Sign operator()(const NT& v, SlabTest t, SlabKind ka = SlabKind::vertex, SlabKind kb = SlabKind::vertex,
-                        SlabKind kx = SlabKind::vertex) const {
-    const StaticBounds::Entry& en = bounds_.entry(t, ka, kb, kx);
+  CGAL::Sign operator()(const NT& v, SlabTest t, SlabRef a = {}, SlabRef b = {}, SlabRef x = {}) const {
+    const CGAL::Sign s = sign_or_zero(v, t, a, b, x);
+    if (s == CGAL::ZERO) throw StaticUndecided{};
+    return s;
+  }
+
+  // The sign, or ZERO when |leading part| <= factor e M2^d (undecided: never a zero sign).
+  CGAL::Sign sign_or_zero(const NT& v, SlabTest t, SlabRef a, SlabRef b, SlabRef x) const {
+    const StaticBounds::Entry& en = bounds_.entry(t, a.kind, b.kind, x.kind);
     const double E = en.e * power_[en.degree];
     const double h = leading_part(v);
     if (h > E) return CGAL::POSITIVE;
     if (h < -E) return CGAL::NEGATIVE;
-    throw StaticUndecided{};
+    return CGAL::ZERO;
   }
 
   static constexpr int kMaxDegree = 14;
@@ -207,9 +213,13 @@ inline std::optional<double> static_scale(double m) {
   return std::bit_cast<double>(static_cast<std::uint64_t>(k + 1023) << 52);
 }
 
-// The static stage on binary64 input: the answer, or nothing if some sign was too close to
-// zero or the magnitudes left the safe range.
-inline std::optional<SlabDecision> static_decide_triangle_cylinder(const Triangle<double>& T, const Cylinder<double>& C) {
+// The static stage's input on binary64 input, relative to P, with its power-of-two scale M2;
+// nothing when the magnitudes leave the safe range.
+struct StaticTriangleInput {
+  SlabInput<double> in;
+  double M2;
+};
+inline std::optional<StaticTriangleInput> static_triangle_input(const Triangle<double>& T, const Cylinder<double>& C) {
   const SlabInput<double> in{{Vec3<double>(T.v[0] - C.p0), Vec3<double>(T.v[1] - C.p0), Vec3<double>(T.v[2] - C.p0)},
                              C.axis(),
                              C.radius,
@@ -228,8 +238,16 @@ inline std::optional<SlabDecision> static_decide_triangle_cylinder(const Triangl
   if (!finite) return std::nullopt;
   const std::optional<double> M2 = static_scale(m);
   if (!M2) return std::nullopt;
+  return StaticTriangleInput{in, *M2};
+}
+
+// The static stage on binary64 input: the answer, or nothing if some sign was too close to
+// zero or the magnitudes left the safe range.
+inline std::optional<SlabDecision> static_decide_triangle_cylinder(const Triangle<double>& T, const Cylinder<double>& C) {
+  const std::optional<StaticTriangleInput> x = static_triangle_input(T, C);
+  if (!x) return std::nullopt;
   try {
-    return decide_slab(in, StaticSigns(triangle_static_bounds(), *M2));
+    return decide_slab(x->in, StaticSigns(triangle_static_bounds(), x->M2));
   } catch (const StaticUndecided&) {
     return std::nullopt;
   }
