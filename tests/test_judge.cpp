@@ -423,6 +423,25 @@ BOOST_AUTO_TEST_CASE(plugin_crash_keeps_earlier_answers) {
   BOOST_TEST(spaced.err.find("case 'line_cylinder/rim/4'") != std::string::npos, spaced.err);
 }
 
+BOOST_AUTO_TEST_CASE(coprocess_reads_the_cases_query_lines) {
+  // What the program reads is each case's line without "meta", byte for byte as the cases file
+  // writes it, for every query.
+  Scratch s;
+  for (const study::Query query : study::kQueries) {
+    const std::string q(study::to_string(query));
+    BOOST_TEST_REQUIRE(s.run(kCertcyl + " cases --query " + q + " --size tiny > cases.jsonl").status == 0);
+    const Run r = s.run(kCertcyl + " judge --cases cases.jsonl --exec 'tee read.jsonl | " + kCertcyl + " query'");
+    BOOST_TEST_REQUIRE(r.status == 0, r.err);
+    const auto cases = lines_of(slurp(s / "cases.jsonl")), read = lines_of(slurp(s / "read.jsonl"));
+    BOOST_TEST_REQUIRE(read.size() == cases.size());
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      nlohmann::ordered_json c = nlohmann::ordered_json::parse(cases[i]);
+      c.erase("meta");
+      BOOST_TEST(read[i] == c.dump(), q << " line " << i + 1);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(shards_concatenated_judge_as_one_run) {
   // Two shards of one cases file: each holds the cases whose index is its own modulo 2, is
   // renamed into place when finished, and their answers.jsonl together, judged as an answers
