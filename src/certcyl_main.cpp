@@ -295,7 +295,8 @@ int main(int argc, char** argv) {
   }
   if (make_scene->parsed()) {
     try {
-      std::cout << certcyl::cli::generate_scene(scene_spec).document.dump() << '\n';
+      // Streamed as generated: memory does not grow with --cylinders.
+      certcyl::cli::write_scene(scene_spec, std::cout);
     } catch (const std::exception& e) {
       std::cerr << "certcyl: " << e.what() << '\n';
       return 1;

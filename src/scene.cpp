@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <exception>
 #include <functional>
 #include <atomic>
 #include <chrono>
@@ -116,46 +117,70 @@ struct ScanStopped {
   int status;
 };
 
+// The narrow phase's lines for one chunk: the JSON line of each meeting pair (empty for a
+// separated one), in chunk order; when a query failed (std::bad_alloc, or GMP's or CGAL's
+// exceptions), `failure` holds the exception of the first pair that failed, in chunk order,
+// and only the lines before that pair are complete.
+struct ChunkLines {
+  std::vector<std::string> lines;
+  std::size_t complete = 0;  // lines[0, complete) are final
+  std::exception_ptr failure;
+};
+
 // The narrow phase on one chunk of candidate pairs: the certified query on each, on `threads`
-// threads; the JSON line of each meeting pair (empty for a separated one), in chunk order.
-std::vector<std::string> narrow_phase(const std::vector<SceneSolid>& solids, const std::vector<std::pair<std::size_t, std::size_t>>& pairs,
-                                      unsigned threads, std::atomic<std::size_t>& done, SceneStats& stats) {
+// threads. A worker catches what its pair throws (an exception must not leave a thread: that
+// ends the process) and the others then take no new pair.
+ChunkLines narrow_phase(const std::vector<SceneSolid>& solids, const std::vector<std::pair<std::size_t, std::size_t>>& pairs,
+                        unsigned threads, std::atomic<std::size_t>& done, SceneStats& stats) {
   using clock = std::chrono::steady_clock;
-  std::vector<std::string> lines(pairs.size());
+  ChunkLines out;
+  std::vector<std::string>& lines = out.lines;
+  lines.resize(pairs.size());
+  out.complete = pairs.size();
   std::atomic<std::size_t> next{0};
   std::mutex mutex;
   auto work = [&] {
     double query_s = 0, format_s = 0;
     std::size_t n_touching = 0, n_overlapping = 0, n_undecided = 0;
-    for (std::size_t k = next++; k < pairs.size(); k = next++) {
-      const SceneSolid& a = solids[pairs[k].first];
-      const SceneSolid& b = solids[pairs[k].second];
-      const auto q0 = clock::now();
-      Answer verdict;
-      std::optional<CylinderCylinderResult> cc;
-      std::optional<TriangleCylinderResult> tc;
-      if (a.is_cylinder && b.is_cylinder) {
-        cc = certified_cylinder_cylinder(a.cylinder, b.cylinder, {});
-        verdict = cc->answer;
-      } else {
-        const SceneSolid& tri = a.is_cylinder ? b : a;
-        const SceneSolid& cyl = a.is_cylinder ? a : b;
-        tc = certified_triangle_cylinder(tri.triangle, cyl.cylinder);
-        verdict = tc->answer;
+    std::size_t k = next++;
+    try {
+      for (; k < pairs.size(); k = next++) {
+        const SceneSolid& a = solids[pairs[k].first];
+        const SceneSolid& b = solids[pairs[k].second];
+        const auto q0 = clock::now();
+        Answer verdict;
+        std::optional<CylinderCylinderResult> cc;
+        std::optional<TriangleCylinderResult> tc;
+        if (a.is_cylinder && b.is_cylinder) {
+          cc = certified_cylinder_cylinder(a.cylinder, b.cylinder, {});
+          verdict = cc->answer;
+        } else {
+          const SceneSolid& tri = a.is_cylinder ? b : a;
+          const SceneSolid& cyl = a.is_cylinder ? a : b;
+          tc = certified_triangle_cylinder(tri.triangle, cyl.cylinder);
+          verdict = tc->answer;
+        }
+        const auto q1 = clock::now();
+        if (verdict != Answer::separated) {
+          const ojson answer = cc ? cylinder_cylinder_json(*cc) : triangle_cylinder_json(*tc);
+          ojson line{{"a", a.name}, {"b", b.name}};
+          for (auto it = answer.begin(); it != answer.end(); ++it) line[it.key()] = it.value();
+          lines[k] = line.dump();
+          n_touching += verdict == Answer::touching;
+          n_overlapping += verdict == Answer::overlapping;
+          n_undecided += verdict == Answer::undecided;
+        }
+        query_s += std::chrono::duration<double>(q1 - q0).count();
+        format_s += seconds_since(q1);
+        ++done;
       }
-      const auto q1 = clock::now();
-      if (verdict != Answer::separated) {
-        const ojson answer = cc ? cylinder_cylinder_json(*cc) : triangle_cylinder_json(*tc);
-        ojson line{{"a", a.name}, {"b", b.name}};
-        for (auto it = answer.begin(); it != answer.end(); ++it) line[it.key()] = it.value();
-        lines[k] = line.dump();
-        n_touching += verdict == Answer::touching;
-        n_overlapping += verdict == Answer::overlapping;
-        n_undecided += verdict == Answer::undecided;
+    } catch (...) {
+      std::lock_guard lock(mutex);
+      if (k < out.complete) {
+        out.complete = k;
+        out.failure = std::current_exception();
       }
-      query_s += std::chrono::duration<double>(q1 - q0).count();
-      format_s += seconds_since(q1);
-      ++done;
+      next = pairs.size();  // the other workers finish their pair and take no other
     }
     std::lock_guard lock(mutex);
     stats.touching += n_touching, stats.overlapping += n_overlapping, stats.undecided += n_undecided;
@@ -163,10 +188,14 @@ std::vector<std::string> narrow_phase(const std::vector<SceneSolid>& solids, con
     stats.format_thread_s += format_s;
   };
   std::vector<std::thread> pool;
-  for (unsigned i = 1; i < threads && i < pairs.size(); ++i) pool.emplace_back(work);
+  try {
+    for (unsigned i = 1; i < threads && i < pairs.size(); ++i) pool.emplace_back(work);
+  } catch (const std::exception&) {
+    // No thread (or no memory) for another worker: the ones started, and this one, do the chunk.
+  }
   work();
   for (auto& th : pool) th.join();
-  return lines;
+  return out;
 }
 
 }  // namespace
@@ -203,17 +232,20 @@ int stream_meeting_pairs(const std::vector<SceneSolid>& solids, unsigned threads
   auto flush = [&] {
     stats.max_pairs_held = std::max(stats.max_pairs_held, chunk.size());
     auto n0 = clock::now();
-    const std::vector<std::string> lines = narrow_phase(solids, chunk, threads, done, stats);
+    const ChunkLines result = narrow_phase(solids, chunk, threads, done, stats);
     auto w0 = clock::now();
     narrow_s += std::chrono::duration<double>(w0 - n0).count();
-    for (const std::string& l : lines)
-      if (!l.empty() && !write(l)) throw ScanStopped{1};
+    // The lines before a failed pair are written, in order, before its exception goes on.
+    for (std::size_t k = 0; k < result.complete; ++k)
+      if (!result.lines[k].empty() && !write(result.lines[k])) throw ScanStopped{1};
     write_s += seconds_since(w0);
+    if (result.failure) std::rethrow_exception(result.failure);
     chunk.clear();
     // A signal ends the scan here, between chunks: every line of the pairs examined is out.
     if (const int sig = interrupt_signal()) throw ScanStopped{128 + sig};
   };
   int status = 0;
+  std::exception_ptr failure;
   try {
     for_each_candidate_pair(boxes, [&](std::size_t i, std::size_t j) {
       // Triangle-triangle pairs are not a cylinder query.
@@ -225,12 +257,15 @@ int stream_meeting_pairs(const std::vector<SceneSolid>& solids, unsigned threads
     flush();
   } catch (const ScanStopped& stop) {
     status = stop.status;
+  } catch (...) {
+    failure = std::current_exception();  // after the progress thread is joined
   }
   finished = true;
   if (reporter.joinable()) {
     reporter.join();
     std::cerr << "\rcertcyl scene: " << done << " candidate pairs examined\n";
   }
+  if (failure) std::rethrow_exception(failure);
   stats.narrow_s = narrow_s;
   stats.write_s = write_s;
   stats.broad_s = std::max(0.0, seconds_since(start) - stats.boxes_s - narrow_s - write_s);
@@ -293,7 +328,11 @@ int run_scene(const std::string& path, std::ostream& out, unsigned threads, bool
     });
   } catch (const std::bad_alloc&) {
     out.flush();
-    err << "certcyl scene: out of memory in the narrow phase\n";
+    err << "certcyl scene: out of memory in the scan; the lines of the pairs examined before are written\n";
+    return 1;
+  } catch (const std::exception& e) {
+    out.flush();
+    err << "certcyl scene: internal error in the scan: " << e.what() << "; the lines of the pairs examined before are written\n";
     return 1;
   }
   out.flush();

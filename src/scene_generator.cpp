@@ -1,7 +1,9 @@
 #include "scene_generator.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <ostream>
 #include <stdexcept>
 
 namespace certcyl::cli {
@@ -37,18 +39,17 @@ nlohmann::ordered_json cylinder(const std::string& name, const P& p0, const P& p
 
 }  // namespace
 
-GeneratedScene generate_scene(const SceneSpec& spec) {
+double for_each_scene_cylinder(const SceneSpec& spec, const std::function<bool(const nlohmann::ordered_json&)>& emit,
+                               std::vector<std::pair<std::size_t, std::size_t>>* touching) {
   if (spec.neighbours <= 0 || spec.touching_share < 0 || spec.touching_share > 1)
     throw std::invalid_argument("make-scene: need neighbours > 0 and 0 <= touching share <= 1");
-  GeneratedScene out;
   SplitMix rng(spec.seed);
   const double n = static_cast<double>(std::max<std::size_t>(spec.cylinders, 1));
   // Side rounded to a multiple of 2^-10 so the dyadic placements below stay exact.
-  out.side = std::max(4.0, std::round(std::ldexp(std::cbrt(n * 2.1 / spec.neighbours), 10)) / 1024.0);
-  const double S = out.side;
+  const double S = std::max(4.0, std::round(std::ldexp(std::cbrt(n * 2.1 / spec.neighbours), 10)) / 1024.0);
   const auto pairs = static_cast<std::size_t>(std::floor(n * spec.touching_share / 2));
   const std::size_t random_count = spec.cylinders - std::min(spec.cylinders, 2 * pairs);
-  nlohmann::ordered_json cyls = nlohmann::ordered_json::array();
+  std::size_t emitted = 0;
   for (std::size_t i = 0; i < random_count; ++i) {
     P d;
     double len2;
@@ -61,8 +62,10 @@ GeneratedScene generate_scene(const SceneSpec& spec) {
     const double r = rng.uniform(0.05, 0.15);
     std::string name("c");
     name.append(std::to_string(i));
-    cyls.push_back(cylinder(name, {c[0] - half * d[0], c[1] - half * d[1], c[2] - half * d[2]},
-                            {c[0] + half * d[0], c[1] + half * d[1], c[2] + half * d[2]}, r));
+    if (!emit(cylinder(name, {c[0] - half * d[0], c[1] - half * d[1], c[2] - half * d[2]},
+                       {c[0] + half * d[0], c[1] + half * d[1], c[2] + half * d[2]}, r)))
+      return S;
+    ++emitted;
   }
   const char* kinds[] = {"walls", "caps", "crossing", "capwall"};
   for (std::size_t j = 0; j < pairs; ++j) {
@@ -108,12 +111,45 @@ GeneratedScene generate_scene(const SceneSpec& spec) {
     std::string partner = host;
     host.push_back('a');
     partner.push_back('b');
-    out.touching.emplace_back(cyls.size(), cyls.size() + 1);
-    cyls.push_back(cylinder(host, h0, h1p, r1));
-    cyls.push_back(cylinder(partner, q0, q1, r2));
+    if (touching) touching->emplace_back(emitted, emitted + 1);
+    if (!emit(cylinder(host, h0, h1p, r1)) || !emit(cylinder(partner, q0, q1, r2))) return S;
+    emitted += 2;
   }
+  return S;
+}
+
+GeneratedScene generate_scene(const SceneSpec& spec) {
+  GeneratedScene out;
+  nlohmann::ordered_json cyls = nlohmann::ordered_json::array();
+  out.side = for_each_scene_cylinder(
+      spec,
+      [&](const nlohmann::ordered_json& c) {
+        cyls.push_back(c);
+        return true;
+      },
+      &out.touching);
   out.document = {{"cylinders", std::move(cyls)}};
   return out;
+}
+
+bool write_scene(const SceneSpec& spec, std::ostream& out) {
+  out << "{\"cylinders\":[";
+  bool first = true;
+  std::string text;
+  for_each_scene_cylinder(
+      spec,
+      [&](const nlohmann::ordered_json& c) {
+        text.clear();
+        if (!first) text.push_back(',');
+        first = false;
+        text += c.dump();
+        out.write(text.data(), static_cast<std::streamsize>(text.size()));
+        return static_cast<bool>(out);  // a failed write ends the scene
+      },
+      nullptr);
+  out << "]}\n";
+  out.flush();
+  return static_cast<bool>(out);
 }
 
 }  // namespace certcyl::cli

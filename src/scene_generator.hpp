@@ -28,6 +28,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <iosfwd>
 #include <string>
 #include <utility>
 #include <vector>
@@ -48,6 +50,19 @@ struct GeneratedScene {
   double side = 0;  // S
 };
 
+// The whole scene in memory (tests, benchmarks).
 GeneratedScene generate_scene(const SceneSpec& spec);
+
+// The same cylinders, in the same order, passed one at a time to `emit` as they are generated
+// (emit returns false to stop); the touching pairs are appended to `touching` when it is not
+// null. Returns the side S. Memory is that of one cylinder, whatever spec.cylinders.
+double for_each_scene_cylinder(const SceneSpec& spec, const std::function<bool(const nlohmann::ordered_json&)>& emit,
+                               std::vector<std::pair<std::size_t, std::size_t>>* touching);
+
+// `certcyl make-scene`: writes generate_scene(spec).document.dump() and a newline to `out`,
+// byte for byte, as the cylinders are generated: memory is that of one cylinder and the
+// stream's buffer, whatever spec.cylinders. Stops at the first failed write; returns whether
+// every write succeeded.
+bool write_scene(const SceneSpec& spec, std::ostream& out);
 
 }  // namespace certcyl::cli

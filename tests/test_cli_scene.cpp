@@ -4,11 +4,15 @@
 #include <boost/test/unit_test.hpp>
 
 #include <array>
+#include <atomic>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
+#include <new>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "certcyl/certified/cylinder_cylinder.hpp"
 #include "query.hpp"
@@ -17,6 +21,23 @@
 
 using namespace certcyl;
 using namespace certcyl::cli;
+
+// Fault injection: while `fail_off_thread` is set, operator new throws std::bad_alloc in every
+// thread but `allowed_thread` (the test's own), as it would when memory runs out in a worker.
+namespace {
+std::atomic<bool> fail_off_thread{false};
+std::thread::id allowed_thread;
+}  // namespace
+
+// (GCC sees the malloc and free below and takes them for a mismatched new and free.)
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void* operator new(std::size_t n) {
+  if (fail_off_thread.load() && std::this_thread::get_id() != allowed_thread) throw std::bad_alloc();
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace {
 
@@ -201,6 +222,85 @@ BOOST_AUTO_TEST_CASE(a_failed_write_stops_the_scan) {
   BOOST_TEST(status == 1);
   BOOST_TEST(written == 5u);
   BOOST_TEST(stats.candidate_pairs < 780u);
+}
+
+// A worker thread that runs out of memory does not end the process: the scan throws
+// std::bad_alloc after writing, in order, the lines of the pairs before the failed one.
+BOOST_AUTO_TEST_CASE(out_of_memory_in_a_worker_keeps_the_lines_written) {
+  const std::vector<SceneSolid> solids = identical_cylinders(120);  // 7,140 pairs, all overlapping
+  std::vector<std::string> reference;
+  SceneStats stats;
+  BOOST_TEST_REQUIRE(stream_meeting_pairs(solids, 4, false, stats, [&](const std::string& l) {
+    reference.push_back(l);
+    return true;
+  }, 64) == 0);
+  BOOST_TEST_REQUIRE(reference.size() == 7140u);
+
+  allowed_thread = std::this_thread::get_id();
+  std::vector<std::string> lines;
+  bool threw = false;
+  try {
+    // From the 50th line on, every allocation of the three worker threads fails.
+    stream_meeting_pairs(solids, 4, false, stats, [&](const std::string& l) {
+      lines.push_back(l);
+      if (lines.size() == 50) fail_off_thread = true;
+      return true;
+    }, 64);
+  } catch (const std::bad_alloc&) {
+    threw = true;
+  }
+  fail_off_thread = false;
+  BOOST_TEST(threw);
+  BOOST_TEST(lines.size() >= 64u);  // the first chunk, computed before the failures began
+  BOOST_TEST(lines.size() < 7140u);
+  BOOST_TEST_REQUIRE(lines.size() <= reference.size());
+  BOOST_TEST((std::vector<std::string>(reference.begin(), reference.begin() + static_cast<std::ptrdiff_t>(lines.size())) == lines));
+}
+
+// The command: the message, status 1, and only complete lines of the pairs before the failure.
+BOOST_AUTO_TEST_CASE(out_of_memory_in_a_worker_is_reported_by_the_command) {
+  const std::string path = "test_cli_scene_oom.json";
+  {
+    json cyls = json::array();
+    for (int i = 0; i < 200; ++i)
+      cyls.push_back({{"name", std::string("c").append(std::to_string(i))}, {"p0", {0, 0, 0}}, {"p1", {0, 0, 1}}, {"radius", 1}});
+    std::ofstream(path) << json{{"cylinders", cyls}}.dump();
+  }
+  std::ostringstream out, err;
+  allowed_thread = std::this_thread::get_id();
+  fail_off_thread = true;
+  const int status = run_scene(path, out, 4, false, false, err);
+  fail_off_thread = false;
+  std::remove(path.c_str());
+  BOOST_TEST(status == 1);
+  BOOST_TEST(err.str() == "certcyl scene: out of memory in the scan; the lines of the pairs examined before are written\n");
+  const std::string text = out.str();
+  BOOST_TEST((text.empty() || text.back() == '\n'));
+  const std::vector<json> lines = json_lines(text);
+  BOOST_TEST(lines.size() < 19900u);
+  for (std::size_t k = 0; k < lines.size(); ++k) BOOST_TEST(lines[k]["answer"] == "overlapping");
+}
+
+// make-scene streams: the document written as generated is byte for byte the one built in
+// memory, and the touching pairs are where the construction puts them.
+BOOST_AUTO_TEST_CASE(make_scene_streams_the_same_document) {
+  SceneSpec spec;
+  spec.cylinders = 901;
+  spec.seed = 11;
+  spec.touching_share = 0.2;  // 90 touching pairs after 721 random cylinders
+  std::ostringstream out;
+  BOOST_TEST(write_scene(spec, out));
+  const GeneratedScene g = generate_scene(spec);
+  BOOST_TEST(out.str() == g.document.dump() + "\n");
+  BOOST_TEST(g.touching.size() == 90u);
+  BOOST_TEST(g.touching.front().first == 721u);
+  BOOST_TEST(g.touching.back().second == 900u);
+  BOOST_TEST(g.document["cylinders"][721]["name"] == "walls0a");
+  BOOST_TEST(g.document["cylinders"][900]["name"] == "caps89b");
+  // A stream that fails stops the generation.
+  std::ostringstream failed;
+  failed.setstate(std::ios::badbit);
+  BOOST_TEST(!write_scene(spec, failed));
 }
 
 BOOST_AUTO_TEST_CASE(scene_names_are_distinct) {

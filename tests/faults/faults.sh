@@ -304,5 +304,20 @@ out=$(echo "$big" | "$certcyl" query --method eberly_corrected --nt long_double)
 [[ $out == *'"answer":"overlapping"'* ]] && pass "eberly_corrected in long double at 1e300: overlapping" ||
   fail "eberly_corrected in long double at 1e300: $out"
 
+# 16. make-scene streams: 1,000,000 cylinders (171 MB of JSON text, more than the limit itself,
+# so a document held in memory could not fit) under a 128 MiB address-space limit, every
+# cylinder written (one '{' each, one for the document) and the document closed.
+( ulimit -v 131072; exec "$certcyl" make-scene --cylinders 1000000 --seed 5 ) 2> "$work/big_scene.err" |
+  "$py" -c "
+import sys
+n = 0; tail = b''
+for block in iter(lambda: sys.stdin.buffer.read(1 << 20), b''):
+    n += block.count(b'{'); tail = (tail + block)[-4:]
+print(n, tail.endswith(b']}\\n'))" > "$work/big_scene.out"
+status=${PIPESTATUS[0]}
+if [[ $status == 0 && $(cat "$work/big_scene.out") == "1000001 True" ]]; then
+  pass "make-scene --cylinders 1000000 under ulimit -v 128 MiB: every cylinder written"
+else fail "make-scene under ulimit -v: status $status, $(cat "$work/big_scene.out") $(head -c 300 "$work/big_scene.err")"; fi
+
 echo "$failures failure(s)"
 [[ $failures == 0 ]]
