@@ -156,7 +156,12 @@ int main(int argc, char** argv) {
       ->check(CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 0, 1024); }, "0..1024"));
   study->add_option("--shard", shard, "Run shard i of n (i/n, 0-based) into results/<name>/shard-i-of-n; then `certcyl merge`");
   study->add_flag("--no-plots", no_plots, "Do not run the plotting script");
-  study->add_flag("--progress,!--no-progress", study_options.progress, "Progress bar on standard error (default on)");
+  study->add_flag("--progress,!--no-progress", study_options.progress,
+                  "Progress on standard error (default on): a bar on a terminal, else a plain line per phase every "
+                  "--progress-every seconds and at its end; --no-progress: none");
+  study->add_option("--progress-every", study_options.progress_seconds,
+                    "Seconds between two plain progress lines when standard error is not a terminal (default 30)")
+      ->check(CLI::Range(0.0, 86400.0));
 
   std::string merge_dir;
   bool merge_no_plots = false;
@@ -254,7 +259,6 @@ int main(int argc, char** argv) {
         study_options.size_given = study->count("--size") > 0;
         study_options.seed_given = study->count("--seed") > 0;
         study_options.name_given = study->count("--name") > 0;
-        if (!isatty(2) && study->count("--progress") == 0) study_options.progress = false;
         status = certcyl::cli::run_study(study_options, std::cout);
       }
     } catch (const std::exception& e) {

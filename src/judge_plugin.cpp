@@ -1,17 +1,22 @@
 // A C plugin (certcyl/plugin.h): loaded with dlopen in a child process, which answers the cases
-// one by one and writes each answer to a pipe as it is given (case index, return value), so a
-// crash in the plugin ends the run with every answer before it in hand, and the parent names
-// the case it crashed on and the signal; a call that gives no answer within the timeout is
-// named likewise, and the child killed.
+// one by one into memory shared with the parent (each return value, then the count of cases
+// answered), with no system call per answer; so a crash in the plugin ends the run with every
+// answer before it in hand, and the parent names the case it crashed on and the signal. The
+// parent watches the count: a call that gives no answer within the timeout is named likewise,
+// and the child killed.
 #include "certcyl/plugin.h"
 
+#include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <cstdint>
 #include <cstring>
+#include <new>
 #include <stdexcept>
 
 #include <dlfcn.h>
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -63,13 +68,33 @@ void* open_plugin(const std::string& path) {
   return handle;
 }
 
-struct Record {
-  std::uint32_t index;
-  std::int32_t value;
+// What the child and the parent share (mmap, MAP_SHARED, so it outlives the child's crash): the
+// count of cases answered, in order (the case at the count is the one being answered), then each
+// case's return value.
+class Shared {
+ public:
+  explicit Shared(std::size_t cases) : bytes_(kValues + sizeof(std::int32_t) * std::max<std::size_t>(cases, 1)) {
+    void* p = ::mmap(nullptr, bytes_, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED) throw std::runtime_error(std::string("--plugin: mmap: ") + std::strerror(errno));
+    base_ = static_cast<char*>(p);
+    new (base_) std::atomic<std::uint64_t>(0);
+  }
+  ~Shared() { ::munmap(base_, bytes_); }
+  Shared(const Shared&) = delete;
+  Shared& operator=(const Shared&) = delete;
+  std::atomic<std::uint64_t>& answered() const { return *std::launder(reinterpret_cast<std::atomic<std::uint64_t>*>(base_)); }
+  std::int32_t* values() const { return reinterpret_cast<std::int32_t*>(base_ + kValues); }
+
+ private:
+  static_assert(std::atomic<std::uint64_t>::is_always_lock_free, "the count is shared between processes");
+  static constexpr std::size_t kValues = 64;  // the count's cache line, then the values
+  std::size_t bytes_;
+  char* base_;
 };
 
-// The child: answers every case whose query the plugin exports, one record per answer.
-[[noreturn]] void answer_in_child(const std::string& path, const std::vector<Case>& cases, int fd) {
+// The child: answers every case into `shared`; it holds a pipe's write end open until it ends, so
+// the parent sees its end on the pipe.
+[[noreturn]] void answer_in_child(const std::string& path, const std::vector<Case>& cases, const Shared& shared) {
   void* handle = ::dlopen(dlopen_path(path).c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) _exit(3);
   void* fns[study::kQueries.size()] = {};
@@ -77,9 +102,9 @@ struct Record {
     if (const char* s = symbol_of(q)) fns[static_cast<std::size_t>(q)] = ::dlsym(handle, s);
   for (std::size_t i = 0; i < cases.size(); ++i) {
     void* fn = fns[static_cast<std::size_t>(cases[i].query)];
-    if (!fn) continue;
-    const Record r{static_cast<std::uint32_t>(i), call(fn, cases[i])};
-    if (::write(fd, &r, sizeof r) != static_cast<ssize_t>(sizeof r)) _exit(4);
+    if (!fn) _exit(5);  // run_plugin's caller checked that the plugin exports every case's query
+    shared.values()[i] = call(fn, cases[i]);
+    shared.answered().store(i + 1, std::memory_order_release);
   }
   _exit(0);
 }
@@ -118,57 +143,62 @@ PluginInfo inspect_plugin(const std::string& path) {
 }
 
 Answers run_plugin(const std::string& path, const std::vector<Case>& cases, const Timeout& timeout) {
-  int fds[2];
+  const Shared shared(cases.size());
+  int fds[2];  // the child holds the write end: its end closes the pipe
   if (::pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error(std::string("--plugin: pipe: ") + std::strerror(errno));
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error(std::string("--plugin: fork: ") + std::strerror(errno));
   if (pid == 0) {
     ::close(fds[0]);
-    answer_in_child(path, cases, fds[1]);
+    answer_in_child(path, cases, shared);
   }
   ::close(fds[1]);
   Answers result;
   result.answers.resize(cases.size());
-  std::size_t next = 0;  // the first case not yet answered
-  Record r{};
-  for (;;) {
-    std::size_t got = 0;
-    const Deadline deadline(timeout);
-    bool hung = false;
-    while (got < sizeof r) {
-      if (!deadline.wait_readable(fds[0])) {
-        hung = true;
-        break;
+  std::size_t next = 0;  // the first case not yet taken from the shared memory
+  // Takes the answers given so far; false (and the failure set) on a value no answer.
+  const auto take = [&] {
+    const std::size_t upto = std::min<std::size_t>(shared.answered().load(std::memory_order_acquire), cases.size());
+    for (; next < upto; ++next) {
+      const int value = shared.values()[next];
+      const std::string a = answer_of(value);
+      if (a.empty()) {
+        result.failure = "the plugin returned " + std::to_string(value) + " on " + line_of(cases, next) + ", case '" + cases[next].id +
+                         "' (expected 0 to 4, or negative for an error)";
+        return false;
       }
-      const ssize_t n = ::read(fds[0], reinterpret_cast<char*>(&r) + got, sizeof r - got);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) break;
-      got += static_cast<std::size_t>(n);
+      result.answers[next] = answered(a);
     }
-    if (hung && next < cases.size()) {
+    return true;
+  };
+  // Waits for the child's end, looking at its progress every 20 ms: a call that gives no answer
+  // within the timeout is a hang.
+  const auto poll_ms = 20;
+  auto last_progress = std::chrono::steady_clock::now();
+  for (;;) {
+    pollfd p{fds[0], POLLIN, 0};
+    const int ready = ::poll(&p, 1, poll_ms);
+    const std::size_t before = next;
+    if (!take()) break;
+    if (ready > 0) {
+      char c;
+      const ssize_t n = ::read(fds[0], &c, 1);
+      if (n == 0 || (n < 0 && errno != EINTR)) break;  // the child ended
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (next != before) last_progress = now;
+    if (timeout.seconds > 0 && next < cases.size() && std::chrono::duration<double>(now - last_progress).count() > timeout.seconds) {
       result.failure = "plugin hung on " + line_of(cases, next) + ", case '" + cases[next].id + "': " + symbol_of(cases[next].query) +
                        " gave no answer within " + timeout.text() + " (--timeout) and was killed";
       break;
     }
-    if (got < sizeof r) break;
-    if (r.index >= cases.size()) {
-      result.failure = "the plugin's child wrote an answer to no case";
-      break;
-    }
-    const std::string a = answer_of(r.value);
-    if (a.empty()) {
-      result.failure = "the plugin returned " + std::to_string(r.value) + " on " + line_of(cases, r.index) + ", case '" +
-                       cases[r.index].id + "' (expected 0 to 4, or negative for an error)";
-      break;
-    }
-    result.answers[r.index] = answered(a);
-    next = r.index + 1;
   }
   if (!result.failure.empty()) ::kill(pid, SIGKILL);
   ::close(fds[0]);
   int status = 0;
   ::waitpid(pid, &status, 0);
   if (!result.failure.empty()) return result;
+  if (!take()) return result;  // the answers given after the last look
   if (next == cases.size() && WIFEXITED(status) && WEXITSTATUS(status) == 0) return result;
   const std::string at = next < cases.size() ? line_of(cases, next) : "the end";
   const std::string which = next < cases.size() ? ", case '" + cases[next].id + "'" : "";

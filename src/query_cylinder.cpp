@@ -90,6 +90,7 @@ ojson answer_cylinders(const json& in, const QueryOptions& o) {
   const EberlyVariant variant = o.method == "eberly_as_written" ? EberlyVariant::as_written : EberlyVariant::corrected;
   const EberlyParameters params = eberly_parameters(in, variant);
   ojson details;
+  std::string non_finite;
   ojson out = run_in_number_type(o, reader.all_binary64(), false, [&]<class NT>() -> Answer {
     if constexpr (!(NumberTraits<NT>::has_sqrt && NumberTraits<NT>::is_field)) {
       throw InvalidInput("nt", "method " + o.method + " needs a square root and division; " + o.nt.name() +
@@ -104,12 +105,21 @@ ojson answer_cylinders(const json& in, const QueryOptions& o) {
                                             {"G", r.counters.G},
                                             {"G_gradient", r.counters.G_gradient},
                                             {"line_searches", r.counters.line_searches}}}};
+      // A value that left the finite numbers of NT (an overflow): no answer.
+      if (!r.non_finite.empty()) {
+        non_finite = r.non_finite;
+        return Answer::undecided;
+      }
       // As written, the seed returns a boolean: not separated means intersecting.
       if (variant == EberlyVariant::as_written && !r.separated) return Answer::overlapping;
       return r.answer;
     }
   });
-  if (out["answer"] != "undecided") {
+  if (!non_finite.empty()) {
+    out["answer"] = "invalid";
+    out["reason"] = "non-finite value in " + non_finite;
+    for (auto it = details.begin(); it != details.end(); ++it) out[it.key()] = it.value();
+  } else if (out["answer"] != "undecided") {
     if (variant == EberlyVariant::as_written && out["answer"] == "overlapping") out["answer"] = "intersecting";
     out["separated"] = out["answer"] == "separated";
     for (auto it = details.begin(); it != details.end(); ++it) out[it.key()] = it.value();

@@ -18,7 +18,8 @@ struct StudyOptions {
   bool size_given = false, seed_given = false, name_given = false;  // on the command line
   int shard_index = 0, shard_count = 1;
   bool plots = true;
-  bool progress = true;
+  bool progress = true;               // on standard error: a bar on a terminal, else plain lines
+  double progress_seconds = 30;      // between two plain progress lines of a phase
   // Filled from the size and the configuration file.
   long per_family = 0;
   int map_cells = 0;                 // failure maps are map_cells x map_cells

@@ -101,7 +101,7 @@ void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& d
   }
   const auto families = all_families();
   std::vector<std::string> lines(methods.size());
-  Progress progress(o.progress, "hunting", methods.size());
+  Progress progress(o, "hunting", methods.size());
   // `trace`, when set, hears of each start family ("F name") and of each input before the
   // method runs on it ("X hexfloats"): the parent of a hunt run in a child process learns
   // which input ended the process.

@@ -88,7 +88,7 @@ std::vector<std::vector<Row>> run_instances(const StudyOptions& o, const Registr
       r.t_error = t_error_ulps(res.t_in, inst.t_in);
     rows[&p - plan.data()].push_back(std::move(r));
   };
-  Progress progress(o.progress, "instances", plan.size());
+  Progress progress(o, "instances", plan.size());
   parallel_for(plan.size(), o.threads, [&](std::size_t pi) {
     certify(plan[pi].inst);
     for (const Method& m : registry)
@@ -96,7 +96,7 @@ std::vector<std::vector<Row>> run_instances(const StudyOptions& o, const Registr
     progress.tick();
   });
   // The serial methods, on this thread only (see Method::serial), in registry order per instance.
-  Progress serial_progress(o.progress, "instances (serial)", plan.size());
+  Progress serial_progress(o, "instances (serial)", plan.size());
   for (Planned& p : plan) {
     std::vector<Row> parallel_rows = std::move(rows[&p - plan.data()]);
     rows[&p - plan.data()].clear();

@@ -145,20 +145,23 @@ nlohmann::json verified_machine(const fs::path& dir, const std::string& label);
 
 // ---- Threads and progress --------------------------------------------------------------------
 
-// Progress of a phase on standard error when `on`: on a terminal a bar redrawn at most every
-// 200 ms; otherwise (a log file, a batch job's output) a plain line "label: done/total (p%,
-// t s)" every 10 s and one when the phase completes, so that a log shows the run advancing.
+// Progress of a phase on standard error when o.progress: on a terminal a bar redrawn at most
+// every 200 ms; otherwise (a log file, a batch job's output) a plain line "label: done/total
+// (p%, t s)" every o.progress_seconds and one when the phase completes, so that a log shows the
+// run advancing.
 class Progress {
  public:
-  Progress(bool on, std::string label, std::size_t total)
-      : on_(on), bar_(on && isatty(2) != 0), label_(std::move(label)), total_(total), start_(std::chrono::steady_clock::now()),
-        last_(bar_ ? std::chrono::steady_clock::time_point{} : start_) {}
+  Progress(const StudyOptions& o, std::string label, std::size_t total)
+      : on_(o.progress), bar_(o.progress && isatty(2) != 0), label_(std::move(label)), total_(total),
+        interval_(bar_ ? std::chrono::milliseconds(200)
+                       : std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(o.progress_seconds))),
+        start_(std::chrono::steady_clock::now()), last_(bar_ ? std::chrono::steady_clock::time_point{} : start_) {}
   void tick(std::size_t n = 1) {
     const std::size_t d = done_ += n;
     if (!on_) return;
     const auto now = std::chrono::steady_clock::now();
     std::lock_guard lock(mutex_);
-    if (d < total_ && now - last_ < (bar_ ? std::chrono::milliseconds(200) : std::chrono::milliseconds(10000))) return;
+    if (d < total_ && now - last_ < interval_) return;
     last_ = now;
     if (!bar_) {
       std::ostringstream line;
@@ -177,6 +180,7 @@ class Progress {
   bool on_, bar_;
   std::string label_;
   std::size_t total_;
+  std::chrono::steady_clock::duration interval_;
   std::atomic<std::size_t> done_{0};
   std::mutex mutex_;
   std::chrono::steady_clock::time_point start_, last_;

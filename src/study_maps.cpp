@@ -95,7 +95,7 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
       x[spec.c1] = ulp_step(base[spec.c1], (j - n / 2) * o.map_step);
       return x;
     };
-    Progress progress(o.progress, spec.name, cells);
+    Progress progress(o, spec.name, cells);
     parallel_for(cells, o.threads, [&](std::size_t cell) {
       const long i = static_cast<long>(cell) / n, j = static_cast<long>(cell) % n;
       const long d0 = (i - n / 2) * o.map_step, d1 = (j - n / 2) * o.map_step;

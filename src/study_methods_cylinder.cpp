@@ -13,7 +13,8 @@ namespace {
 
 // The seed in one number type. Its three-valued answer: as written it restates the boolean
 // (separated or overlapping), corrected it reports touching when only f(D) = 0 was found;
-// invalid when the direction it found is not finite, as `certcyl query` answers "invalid".
+// invalid when the direction it found is not finite or a value of the seed overflowed
+// (non_finite), as `certcyl query` answers "invalid".
 study::MethodOutput run_eberly(const NumberTypeSpec& spec, const EberlyParameters& params, const std::vector<double>& x) {
   return dispatch(spec, [&]<class NT>() -> study::MethodOutput {
     if constexpr (NumberTraits<NT>::has_sqrt && NumberTraits<NT>::is_field) {
@@ -23,6 +24,7 @@ study::MethodOutput run_eberly(const NumberTypeSpec& spec, const EberlyParameter
             params.variant == EberlyVariant::as_written ? study::boolean_answer(!r.separated) : study::three_valued(r.answer);
         for (const NT& c : {r.direction.x, r.direction.y, r.direction.z})
           if (!std::isfinite(nt::to_double(c))) m.invalid = true;
+        if (!r.non_finite.empty()) m.invalid = true;  // a value overflowed: no answer
         return m;
       } catch (const CGAL::Uncertain_conversion_exception&) {
         return study::three_valued(Answer::undecided);

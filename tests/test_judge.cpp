@@ -423,6 +423,42 @@ BOOST_AUTO_TEST_CASE(plugin_crash_keeps_earlier_answers) {
   BOOST_TEST(spaced.err.find("case 'line_cylinder/rim/4'") != std::string::npos, spaced.err);
 }
 
+BOOST_AUTO_TEST_CASE(plugin_hang_and_bad_return_keep_earlier_answers) {
+  // The answers are read from memory shared with the plugin's child: those given before a call
+  // that hangs, or before a return value that is no answer, are kept.
+  Scratch s;
+  const auto start = std::chrono::steady_clock::now();
+  const Run hung = s.run(kCertcyl + " judge --plugin " CERTCYL_PLUGIN_CRASH " --query ray_cylinder --size tiny --timeout 1 --name hung");
+  BOOST_TEST(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 30);
+  BOOST_TEST(hung.status == 1);
+  BOOST_TEST(hung.err.find("plugin hung on line 3, case 'ray_cylinder/") != std::string::npos, hung.err);
+  BOOST_TEST(hung.err.find("gave no answer within 1 s (--timeout) and was killed") != std::string::npos, hung.err);
+  BOOST_TEST(lines_of(slurp(s.dir / "results/hung/answers.jsonl")).size() == 2u);
+  const Run bad = s.run(kCertcyl + " judge --plugin " CERTCYL_PLUGIN_CRASH " --query segment_cylinder --size tiny --name bad");
+  BOOST_TEST(bad.status == 1);
+  BOOST_TEST(bad.err.find("the plugin returned 7 on line 2, case 'segment_cylinder/") != std::string::npos, bad.err);
+  BOOST_TEST(lines_of(slurp(s.dir / "results/bad/answers.jsonl")).size() == 1u);
+}
+
+BOOST_AUTO_TEST_CASE(coprocess_reads_the_cases_query_lines) {
+  // What the program reads is each case's line without "meta", byte for byte as the cases file
+  // writes it, for every query.
+  Scratch s;
+  for (const study::Query query : study::kQueries) {
+    const std::string q(study::to_string(query));
+    BOOST_TEST_REQUIRE(s.run(kCertcyl + " cases --query " + q + " --size tiny > cases.jsonl").status == 0);
+    const Run r = s.run(kCertcyl + " judge --cases cases.jsonl --exec 'tee read.jsonl | " + kCertcyl + " query'");
+    BOOST_TEST_REQUIRE(r.status == 0, r.err);
+    const auto cases = lines_of(slurp(s / "cases.jsonl")), read = lines_of(slurp(s / "read.jsonl"));
+    BOOST_TEST_REQUIRE(read.size() == cases.size());
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      nlohmann::ordered_json c = nlohmann::ordered_json::parse(cases[i]);
+      c.erase("meta");
+      BOOST_TEST(read[i] == c.dump(), q << " line " << i + 1);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(shards_concatenated_judge_as_one_run) {
   // Two shards of one cases file: each holds the cases whose index is its own modulo 2, is
   // renamed into place when finished, and their answers.jsonl together, judged as an answers

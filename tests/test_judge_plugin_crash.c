@@ -1,8 +1,10 @@
 /* A plugin for tests/test_judge.cpp: answers line queries "separated", fails (-1) on its second
- * call and dies by SIGSEGV on its fifth, as a buggy plugin would. */
+ * call and dies by SIGSEGV on its fifth, as a buggy plugin would; hangs on its third ray query;
+ * returns 7, no answer, on its second segment query. */
 #include <certcyl/plugin.h>
 
 #include <signal.h>
+#include <unistd.h>
 
 const char* certcyl_plugin_name(void) { return "crashes_on_fifth"; }
 
@@ -12,4 +14,18 @@ int certcyl_plugin_line_cylinder(const double origin[3], const double direction[
   if (++calls == 2) return -1;
   if (calls == 5) raise(SIGSEGV);
   return CERTCYL_SEPARATED;
+}
+
+int certcyl_plugin_ray_cylinder(const double origin[3], const double direction[3], const double c[7], double t[2]) {
+  static int calls = 0;
+  (void)origin, (void)direction, (void)c, (void)t;
+  if (++calls == 3)
+    for (;;) pause();
+  return CERTCYL_SEPARATED;
+}
+
+int certcyl_plugin_segment_cylinder(const double p0[3], const double p1[3], const double c[7], double t[2]) {
+  static int calls = 0;
+  (void)p0, (void)p1, (void)c, (void)t;
+  return ++calls == 2 ? 7 : CERTCYL_SEPARATED;
 }

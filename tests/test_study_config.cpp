@@ -257,6 +257,38 @@ BOOST_AUTO_TEST_CASE(command_line_wins_through_the_binary) {
   fs::remove_all(out);
 }
 
+BOOST_AUTO_TEST_CASE(progress_lines_in_a_log) {
+  // Standard error is a file here, as in a log or a batch job's output: progress is on by
+  // default, as plain lines (no carriage return), one at the end of each phase and one every
+  // --progress-every seconds; --no-progress turns it off.
+  fs::create_directories(root);
+  std::ofstream(root / "small.json") << kSmall;
+  const std::string out = (root / "progress").string();
+  const std::string common = "study --config '" + (root / "small.json").string() + "' --out '" + out + "' --no-plots --threads 1";
+  const auto lines_of = [](const std::string& text, const std::string& prefix) {
+    std::size_t n = 0;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) n += line.rfind(prefix, 0) == 0 && line.find("%, ") != std::string::npos;
+    return n;
+  };
+  Run r = run(common + " --name default_on > /dev/null");
+  BOOST_TEST_REQUIRE(r.status == 0);
+  BOOST_TEST(r.err.find('\r') == std::string::npos);
+  BOOST_TEST(lines_of(r.err, "instances: ") == 1u, r.err);
+  BOOST_TEST(r.err.find("(100%, ") != std::string::npos, r.err);
+  BOOST_TEST(lines_of(r.err, "hunting: ") == 1u, r.err);
+  // An interval shorter than one step: a line per step, the last at 100%.
+  r = run(common + " --name every_step --progress-every 0 > /dev/null");
+  BOOST_TEST_REQUIRE(r.status == 0);
+  BOOST_TEST(r.err.find('\r') == std::string::npos);
+  BOOST_TEST(lines_of(r.err, "hunting: ") > 1u, r.err);
+  BOOST_TEST(r.err.find("hunting: 1/") != std::string::npos, r.err);
+  r = run(common + " --name quiet --no-progress > /dev/null");
+  BOOST_TEST(r.status == 0);
+  BOOST_TEST(r.err.empty(), r.err);
+  fs::remove_all(out);
+}
+
 BOOST_AUTO_TEST_CASE(full_device) {
   fs::create_directories(root);
   std::ofstream(root / "small.json") << kSmall;

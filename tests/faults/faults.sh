@@ -287,5 +287,22 @@ else
   fail "study --shard did not write two shards"
 fi
 
+# 15. Eberly's seed on perpendicular cylinders at 1e300: a overlaps b (the point (0, 0, 5e299) is
+# at distance 5e299 < 1e300 from both axes, inside both axis segments), but |p1 - p0| = 2e300
+# squared overflows double, so the unit axes came out zero, the axes looked parallel and the
+# radial test answered "separated". Both variants now answer invalid, naming the value; long
+# double holds 4e600 and gets the answer right.
+big='{"id":1,"query":"cylinder_cylinder","a":{"p0":[-1e300,0,0],"p1":[1e300,0,0],"radius":1e300},"b":{"p0":[0,-1e300,1e300],"p1":[0,1e300,1e300],"radius":1e300}}'
+for method in eberly_corrected eberly_as_written; do
+  out=$(echo "$big" | "$certcyl" query --method $method)
+  status=$?
+  if [[ $status == 0 && $out == *'"answer":"invalid"'* && $out == *'"reason":"non-finite value in h0"'* ]]; then
+    pass "$method on perpendicular cylinders at 1e300: invalid, h0 named"
+  else fail "$method at 1e300: status $status, $out"; fi
+done
+out=$(echo "$big" | "$certcyl" query --method eberly_corrected --nt long_double)
+[[ $out == *'"answer":"overlapping"'* ]] && pass "eberly_corrected in long double at 1e300: overlapping" ||
+  fail "eberly_corrected in long double at 1e300: $out"
+
 echo "$failures failure(s)"
 [[ $failures == 0 ]]

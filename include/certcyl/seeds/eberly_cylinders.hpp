@@ -75,6 +75,12 @@
 //     computed in NT (detail/eberly_common.hpp, EberlyParam).
 // 14. Corrected, F is not evaluated at the kink t*: it is positive there by construction, and
 //     |(1-t) a2 + t b2| at its zero is undecidable in intervals.
+// 15. Overflow. The seed form (C_i, W_i, r_i, h_i, Delta, |Delta|^2) must be finite in NT: in
+//     double, an axis longer than about 1.3e154 makes h = |p1 - p0| infinite and W = A/h zero,
+//     so perpendicular axes look parallel and the radial test "separates" cylinders that
+//     overlap. Both variants then stop with no answer (`non_finite` names the value; the
+//     command answers "invalid"). The corrected variant also stops at any value f(D) that is
+//     not finite; as written compares it as the pseudocode would.
 //
 // Measured (bench/bench_eberly_cylinders.cpp, 200 random separated and 200 overlapping pairs,
 // default parameters, CPU ns per query; evaluations of F, F', G, grad G per query):
@@ -88,6 +94,9 @@
 // As written misses 1% of the separated pairs in every number type, CORE::Expr included: an
 // algorithmic failure (items 2 and 10), not rounding.
 #pragma once
+
+#include <string>
+#include <utility>
 
 #include "certcyl/answer.hpp"
 #include "certcyl/number_traits.hpp"
@@ -112,6 +121,19 @@ EberlySeparationResult<NT> eberly_separated(const Point3<NT>& C0, const Vec3<NT>
   const NT two = nt::constant<NT>(2);
 
   const Vec3<NT> Delta = C1 - C0;
+  // The seed form must be finite: an overflow here (|p1 - p0| of an axis longer than about
+  // 1.3e154 in double, a centre or Delta beyond the largest double) makes W = A/h zero or
+  // infinite, and every test after it meaningless (perpendicular axes then look parallel).
+  {
+    const std::pair<const char*, bool> checks[] = {
+        {"C0", detail::finite_value(C0)}, {"C1", detail::finite_value(C1)},
+        {"W0", detail::finite_value(W0)}, {"W1", detail::finite_value(W1)},
+        {"r0", detail::finite_value(r0)}, {"r1", detail::finite_value(r1)},
+        {"h0", detail::finite_value(h0)}, {"h1", detail::finite_value(h1)},
+        {"Delta", detail::finite_value(Delta)}, {"|Delta|^2", detail::finite_value(NT(squared_length(Delta)))}};
+    for (const auto& [name, finite] : checks)
+      if (!finite) return run.stop_non_finite(name);
+  }
   // Corrected: coincident centres overlap (the common centre is interior to both).
   if (run.corrected() && nt::is_zero(Delta.x) && nt::is_zero(Delta.y) && nt::is_zero(Delta.z)) {
     run.result.test = EberlyTest::delta_zero;

@@ -182,6 +182,11 @@ struct EberlySeparationResult {
   Vec3<NT> direction;                // the separating (or touching) direction; zero otherwise
   EberlyTest test = EberlyTest::none;  // which test found it
   EberlyCounters counters;
+  // Non-empty when a value left the finite numbers of NT (an overflow): the answer is then not
+  // meaningful (separated = false, answer undecided) and this names the value, e.g. "h0" or
+  // "f(D) of test w0". Both variants check the seed form (C_i, W_i, r_i, h_i, Delta, |Delta|^2);
+  // the corrected variant also checks every value f(D) it judges.
+  std::string non_finite;
 };
 
 namespace detail {
@@ -199,6 +204,25 @@ bool is_nan(const NT& x) {
   } else {
     return false;
   }
+}
+
+// Whether x is a finite number of NT: false for an infinity or a NaN of double, long double
+// and Gmpfr, and for an interval with an infinite bound; the exact types are always finite.
+template <class NT>
+bool finite_value(const NT& x) {
+  if constexpr (std::is_floating_point_v<NT>) {
+    return std::isfinite(x);
+  } else if constexpr (std::is_same_v<NT, CGAL::Gmpfr>) {
+    return x.is_number();
+  } else if constexpr (std::is_same_v<NT, Interval>) {
+    return std::isfinite(x.inf()) && std::isfinite(x.sup());
+  } else {
+    return true;
+  }
+}
+template <class NT>
+bool finite_value(const Vec3<NT>& v) {
+  return finite_value(v.x) && finite_value(v.y) && finite_value(v.z);
 }
 
 // The sign of x, or nullopt for an undefined value (NaN). Intervals throw when undecided.
@@ -276,6 +300,13 @@ struct EberlyRun {
   // `direction` is a callable building D, called only when D is recorded.
   template <class MakeDirection>
   bool judge(const NT& f, Strictness strictness, EberlyTest test, MakeDirection&& direction) {
+    // Corrected: a value that overflowed decides nothing; the search stops there (true) with
+    // the value named and no answer. (As written, undefined values are compared as NaN is.)
+    if (corrected() && !finite_value(f)) {
+      stop_non_finite("f(D) of test " + std::string(to_string(test)));
+      result.test = test;
+      return true;
+    }
     const auto s = sign_of(f);
     if (!s) return false;  // undefined: every comparison is false
     if (*s == CGAL::NEGATIVE || (*s == CGAL::ZERO && strictness == Strictness::non_strict)) {
@@ -291,6 +322,16 @@ struct EberlyRun {
       touching_test = test;
     }
     return false;
+  }
+
+  // Ends a query on a value that left the finite numbers: no answer (see non_finite).
+  EberlySeparationResult<NT> stop_non_finite(std::string what) {
+    result.separated = false;
+    result.answer = Answer::undecided;
+    result.direction = zero_vector<NT>();
+    result.test = EberlyTest::none;
+    result.non_finite = std::move(what);
+    return result;
   }
 
   // Ends a query in which no test separated.
