@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "certcyl/number_traits.hpp"
+#include "certcyl/number_traits_core.hpp"
 #include "certcyl/primitives.hpp"
 #include "certcyl/seeds/eberly_cylinders.hpp"
 

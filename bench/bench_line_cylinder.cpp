@@ -25,6 +25,7 @@
 
 #include "checked_main.hpp"
 #include "certcyl/certified/line_cylinder.hpp"
+#include "certcyl/number_traits_core.hpp"
 #include "certcyl/robust/line_cylinder.hpp"
 #include "certcyl/seeds/gullotti_line_elliptic_cylinder.hpp"
 #include "certcyl/seeds/shene_line_cylinder.hpp"

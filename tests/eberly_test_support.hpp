@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "certcyl/number_traits.hpp"
+#include "certcyl/number_traits_core.hpp"
 #include "certcyl/primitives.hpp"
 #include "certcyl/rational.hpp"
 #include "certcyl/seeds/eberly_cylinders.hpp"

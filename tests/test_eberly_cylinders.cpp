@@ -6,6 +6,7 @@
 #include <boost/test/unit_test.hpp>
 #include <boost/mpl/list.hpp>
 
+#include "certcyl/number_traits_core.hpp"
 #include "certcyl/predicates/point_in_cylinder.hpp"
 #include "eberly_test_support.hpp"
 

@@ -13,6 +13,7 @@
 #include <random>
 #include <vector>
 
+#include "certcyl/number_traits_core.hpp"
 #include "certcyl/predicates/point_in_cylinder.hpp"
 #include "eberly_test_support.hpp"
 

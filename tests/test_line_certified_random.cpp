@@ -19,6 +19,7 @@
 #include <random>
 
 #include "certcyl/certified/line_cylinder.hpp"
+#include "certcyl/number_traits_core.hpp"
 #include "certcyl/predicates/point_in_cylinder.hpp"
 
 using namespace certcyl;

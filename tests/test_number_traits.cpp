@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "certcyl/number_traits.hpp"
+#include "certcyl/number_traits_core.hpp"
 
 using namespace certcyl;
 

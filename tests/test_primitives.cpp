@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "certcyl/io/json_input.hpp"
+#include "certcyl/number_traits_core.hpp"
 #include "certcyl/predicates/point_in_cylinder.hpp"
 #include "certcyl/primitives.hpp"
 

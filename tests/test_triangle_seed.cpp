@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "certcyl/certified/triangle_cylinder.hpp"
+#include "certcyl/number_traits_core.hpp"
 #include "certcyl/seeds/eberly_triangle_cylinder.hpp"
 
 using namespace certcyl;

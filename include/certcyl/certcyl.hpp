@@ -17,6 +17,7 @@
 #include "certcyl/io/json_input.hpp"
 #include "certcyl/line_result.hpp"
 #include "certcyl/number_traits.hpp"
+#include "certcyl/number_traits_core.hpp"
 #include "certcyl/predicates/point_in_cylinder.hpp"
 #include "certcyl/primitives.hpp"
 #include "certcyl/rational.hpp"

@@ -14,6 +14,7 @@
 
 #include "certcyl/errors.hpp"
 #include "certcyl/number_traits.hpp"
+#include "certcyl/number_traits_core.hpp"
 
 namespace certcyl {
 

@@ -18,7 +18,9 @@
 //   NumberTraits<NT>::name()         a printable name ("double", "Gmpfr<113>", ...)
 //
 // Types: double, long double, CGAL::Interval_nt<false>, CGAL::Gmpq, CGAL::Gmpz, CGAL::Mpzf, CGAL::Gmpfr,
-// CGAL::Lazy_exact_nt<CGAL::Gmpq>, CORE::Expr, and QD's dd_real (double-double, 106 bits).
+// CGAL::Lazy_exact_nt<CGAL::Gmpq>, and QD's dd_real (double-double, 106 bits); CORE::Expr with
+// certcyl/number_traits_core.hpp, a header of its own because CGAL's CORE_Expr.h alone costs
+// about two thirds of the compile time of a one-query program.
 //
 // Pitfalls this layer absorbs (design note, section 2):
 // - Interval_nt<false> is only correct while the FPU rounds upward: run interval code inside a
@@ -39,7 +41,6 @@
 //   Eigen traits are here.
 #pragma once
 
-#include <CGAL/CORE_Expr.h>
 #include <CGAL/FPU.h>
 #include <CGAL/Gmpfr.h>
 #include <CGAL/Gmpq.h>
@@ -216,14 +217,6 @@ struct NumberTraits<LazyRational> {
   static std::string name() { return "Lazy_exact_nt<Gmpq>"; }
   static LazyRational from_rational(const Rational& q) { return LazyRational(q); }
   static LazyRational constant(long k) { return LazyRational(static_cast<int>(k)); }
-};
-
-template <>
-struct NumberTraits<CORE::Expr> {
-  static constexpr bool is_exact = true, is_certified = true, has_sqrt = true, is_field = true;
-  static std::string name() { return "CORE::Expr"; }
-  static CORE::Expr from_rational(const Rational& q) { return CORE::Expr(CORE::BigRat(q.mpq())); }
-  static CORE::Expr constant(long k) { return CORE::Expr(k); }
 };
 
 // QD's double-double.

@@ -1,5 +1,5 @@
 # Installs the certcyl build in CERTCYL_BINARY_DIR into a scratch prefix and builds and runs
-# the consumer project in CONSUMER_SOURCE_DIR against it.
+# the consumer program CONSUMER_SOURCE_DIR/main.cpp against it, with the CMake lines of README.
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${CERTCYL_BINARY_DIR} --prefix ${prefix}
@@ -22,7 +22,19 @@ foreach(header ${installed_headers})
     message(FATAL_ERROR "${header} includes a study header: ${study_includes}")
   endif()
 endforeach()
-execute_process(COMMAND ${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/build
+# The consumer's CMakeLists.txt is the README's own CMake block (section "Using the library")
+# after a project header, so the lines the README gives are the lines this test builds with.
+file(READ ${README} readme)
+string(REGEX MATCH "```cmake\n([^`]*)```" block "${readme}")
+if(NOT CMAKE_MATCH_1)
+  message(FATAL_ERROR "no ```cmake block in ${README}")
+endif()
+set(source ${WORK_DIR}/source)
+file(MAKE_DIRECTORY ${source})
+file(COPY ${CONSUMER_SOURCE_DIR}/main.cpp DESTINATION ${source})
+file(WRITE ${source}/CMakeLists.txt
+  "cmake_minimum_required(VERSION 3.25)\nproject(certcyl_consumer LANGUAGES CXX)\nadd_executable(app main.cpp)\n${CMAKE_MATCH_1}")
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${source} -B ${WORK_DIR}/build
   -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=Release RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "configuring the consumer failed (${rc})")
@@ -31,7 +43,7 @@ execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK_DIR}/build RESULT_VARIAB
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "building the consumer failed (${rc})")
 endif()
-execute_process(COMMAND ${WORK_DIR}/build/consumer RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+execute_process(COMMAND ${WORK_DIR}/build/app RESULT_VARIABLE rc OUTPUT_VARIABLE out)
 message(STATUS "${out}")
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "the consumer failed (${rc})")

@@ -50,9 +50,11 @@
 //   replaced by 1 and every - by + (ErrorTerm::N). Every polynomial here is homogeneous of
 //   degree (i, j) in (lengths, directions).
 //   E collects the underflow terms: by induction |E| <= F 2^-1074 S 2^(L D), S = mlen^i mdir^j,
-//   D = i + j, F <= (number of products) N < 2^24 N (induction: F(xy) <= N_x F_y + F_x N_y + 1,
-//   F(x +- y) <= F_x + F_y), when both magnitudes lie in [2^-L, 2^L]. With L = 150 and
-//   D <= 6: |E| <= 2^(24 - 1074 + 900) N S = 2^-150 N S.
+//   D = i + j, when both magnitudes lie in [2^-L, 2^L], with F <= 2 (1 + u)^k P N, P the number
+//   of products (induction, the rounded operands carrying their (1 + u) factors:
+//   F(xy) <= (1 + u)^k 2 (P_x + P_y) N_x N_y + (1 + u) F_x F_y 2^-1074 + 1, F(x +- y) <= (1 + u)
+//   (F_x + F_y); the paper's Lemma "line, double" gives the details). With L = 150, D <= 6, fewer
+//   than 2^6 products and k <= 40: |E| <= 2^(8 - 1074 + 900) N S < 2^-150 N S.
 //   The bound actually used, B = fl(fl(C * mlen^i) * mdir^j), C = (k + 1) N u, computed
 //   without underflow or overflow in the window, is at least C (1 - u)^(D+1) m^^(i+j), and
 //   (k + 1) u (1 - u)^(2D+1) >= (1 + u)^k - 1 + 2^-150 for k <= 40, D <= 6 (the difference is

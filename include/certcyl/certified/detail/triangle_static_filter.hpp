@@ -32,9 +32,9 @@
 //   overflow: |value| <= b M2^14 with b < 2^40 (the largest b, see the test) is < 2^940;
 //   underflow: an operation whose result is subnormal errs by < 2^-1074 more than the
 //     relative model says; at most 2^10 operations, each propagated to the root by a factor
-//     <= 2^40 M2^(d-k) (k >= 1 its degree), add < 2^-1024 M2^(d-1) <= 2^-960 M2^d, far below
-//     2^-20 e M2^d (e >= 2^-53, M2^-1 <= 2^64): the bounds are multiplied by (1 + 2^-20) to
-//     absorb it.
+//     <= 2^41 M2^(d-k) (k >= 1 its degree), add < 2^(10 - 1074 + 41) M2^d M2^-k
+//     <= 2^-1023 2^(64 14) M2^d = 2^-127 M2^d (M2 >= 2^-64, k <= 14), far below 2^-20 e M2^d
+//     (e >= 2^-53): the bounds are multiplied by (1 + 2^-20) to absorb it.
 // So E = e (1 + 2^-20) M2^d, computed exactly (M2^d is a power of two in range).
 #pragma once
 
