@@ -2,7 +2,10 @@
 // triangle-cylinder decision: the decision of triangle_slab.hpp evaluated in QD's double-double
 // arithmetic (the DD type of line_double_double.hpp) with a forward error bound derived from
 // the same expression trees as the double filter's, for the inputs the double filter leaves
-// undecided (a vertex, an edge or the face within a few ulps of the wall, a cap plane or a rim).
+// undecided (a vertex, an edge or the face within a few ulps of the wall, a cap plane or a rim):
+// one sign at a time inside the double filter (EscalatingTriangleSigns, below), with interval
+// enclosures for the signs that are small products of small factors, or the whole decision
+// where the double filter's range is left (double_double_decide_triangle_cylinder).
 //
 // Arithmetic. DD's addition and product each return (x op y)(1 + delta), |delta| <= 2^-100
 // (line_double_double.hpp: Joldes, Muller and Popescu's bounds for QD's accurate addition and
@@ -292,8 +295,8 @@ class EscalatingTriangleSigns {
   // bound e M2^2 (the proof above). Near a cap plane these axial values are tiny (about 2^-53
   // of A.A) and known to about 2^-47 of themselves; a crossing point and the tests on it are
   // products of them, far below the homogeneous bound e M2^d of their degree, yet their
-  // enclosure is as narrow, relative to their value, as the axial values'. StaticUndecided
-  // when the enclosure contains 0.
+  // enclosure is as narrow, relative to their value, as the axial values'. When it contains 0,
+  // the vertex forms decide (in_vertex_forms), or StaticUndecided.
   static CGAL::Sign enclosed(const Context& c, SlabTest t, SlabRef ra, SlabRef rb, SlabRef rx) {
     using I = CGAL::Interval_nt<false>;
     const double Es = triangle_double_double_bounds().axial.e * (c.M2 * c.M2);
