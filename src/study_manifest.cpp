@@ -105,7 +105,16 @@ std::string sha256_file(const fs::path& p) {
   return out;
 }
 
-fs::path partial_folder(const fs::path& dir) { return dir.parent_path() / ("." + dir.filename().string() + ".partial"); }
+// The hidden sibling ".NAME<suffix>" of dir. Appended in place: GCC 12's -Wrestrict misreads
+// the inlined "." + name + suffix at -O3 (a false overlap of 2^63 bytes).
+fs::path hidden_sibling(const fs::path& dir, const char* suffix) {
+  std::string name = ".";
+  name += dir.filename().string();
+  name += suffix;
+  return dir.parent_path() / name;
+}
+
+fs::path partial_folder(const fs::path& dir) { return hidden_sibling(dir, ".partial"); }
 
 fs::path begin_folder(const fs::path& dir) {
   const fs::path partial = partial_folder(dir);
@@ -142,7 +151,7 @@ void write_manifest(const fs::path& dir) {
 void seal_folder(const fs::path& partial, const fs::path& dir) {
   write_manifest(partial);
   // Between the two renames `dir` is absent, never a mixture of two runs.
-  const fs::path old = dir.parent_path() / ("." + dir.filename().string() + ".old");
+  const fs::path old = hidden_sibling(dir, ".old");
   fs::remove_all(old);
   if (fs::exists(dir)) fs::rename(dir, old);
   fs::rename(partial, dir);
