@@ -41,6 +41,7 @@
 // enables it (__FMA__) is refused below rather than left to the compiler's contraction mode.
 #pragma once
 
+#include <CGAL/Interval_nt.h>
 #include <qd/dd_real.h>
 
 #include <cfenv>
@@ -82,5 +83,12 @@ inline bool in_double_double_window(double x) {
 }
 
 inline bool rounding_to_nearest() { return std::fegetround() == FE_TONEAREST; }
+
+// An Interval_nt enclosing v.hi + v.lo (exactly) plus or minus err: a double-double value with
+// its proved bound. Under upward rounding only (CGAL::Protect_FPU_rounding<true>).
+inline CGAL::Interval_nt<false> dd_enclosure(const DD& v, double err = 0) {
+  using I = CGAL::Interval_nt<false>;
+  return I(v.v.x[0]) + I(v.v.x[1]) + I(-err, err);
+}
 
 }  // namespace certcyl::detail

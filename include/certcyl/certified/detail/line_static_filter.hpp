@@ -420,10 +420,9 @@ class StaticCircularSigns {
     const double esigma = line_dd_bounds::dot_ll.C * dd_len_pow_[2];
     using I = CGAL::Interval_nt<false>;
     const CGAL::Protect_FPU_rounding<true> upward;  // no double-double operation below
-    auto point = [](const DD& v) { return I(v.v.x[0]) + I(v.v.x[1]); };
-    auto vec = [&](const SV3<DD>& v) { return SV3<I>{point(v.x), point(v.y), point(v.z)}; };
+    auto vec = [](const SV3<DD>& v) { return SV3<I>{dd_enclosure(v.x), dd_enclosure(v.y), dd_enclosure(v.z)}; };
     const SV3<I> xi = vec(x), di = vec(l.d);
-    const I si = point(s) + I(-es, es), gi = point(sigma) + I(-esigma, esigma), r = point(l.r);
+    const I si = dd_enclosure(s, es), gi = dd_enclosure(sigma, esigma), r = dd_enclosure(l.r);
     const I V = CGAL::square(si) * (sdot(xi, xi) - CGAL::square(r)) - I(2) * si * gi * sdot(xi, di) + CGAL::square(gi) * sdot(di, di);
     if (V.inf() > 0) return CGAL::POSITIVE;
     if (V.sup() < 0) return CGAL::NEGATIVE;

@@ -229,7 +229,7 @@ class EscalatingTriangleSigns {
     BoundedSigns<DD> sign;
     double M2;
     mutable VertexForms forms;  // made when first needed
-    mutable std::array<std::optional<SlabPoint<DD>>, 21> points;  // by SlabRef::src, made when first needed
+    mutable std::array<std::optional<SlabPoint<DD>>, slab_src_count> points;  // by SlabRef::src, made when first needed
   };
 
   const Context& context() const {
@@ -251,14 +251,13 @@ class EscalatingTriangleSigns {
 
   // The point a SlabRef names, as decide_slab builds it in double-double.
   static const SlabPoint<DD>& point(const Context& c, SlabRef r) {
-    static_assert(slab_crossing_src(2, 0, 0) == 21);
-    if (r.src < 0 || r.src >= slab_crossing_src(2, 0, 0)) throw StaticUndecided{};  // not recorded
+    if (r.src < 0 || r.src >= slab_src_count) throw StaticUndecided{};  // not recorded
     std::optional<SlabPoint<DD>>& p = c.points[r.src];
     if (!p) {
       if (r.src < 3) {
         p = SlabPoint<DD>{c.in.a[r.src], c.in.one, SlabKind::vertex, r.src};
       } else {
-        const int k = r.src - 3, plane = k / 9, pos = k % 9 / 3, neg = k % 3;
+        const auto [plane, pos, neg] = slab_crossing_of(r.src);
         const std::array<DD, 3>& h = plane == 0 ? c.s : c.top;
         p = slab_crossing(c.in.a[pos], h[pos], c.in.a[neg], h[neg]);
       }
@@ -305,19 +304,18 @@ class EscalatingTriangleSigns {
     std::array<I, 3> s, top;
     {
       const CGAL::Protect_FPU_rounding<true> upward;  // no double-double operation in this scope
-      const auto exact = [](const DD& v) { return I(v.v.x[0]) + I(v.v.x[1]); };
-      const auto vec = [&](const Vec3<DD>& v) { return Vec3<I>{exact(v.x), exact(v.y), exact(v.z)}; };
+      const auto vec = [](const Vec3<DD>& v) { return Vec3<I>{dd_enclosure(v.x), dd_enclosure(v.y), dd_enclosure(v.z)}; };
       const std::array<Vec3<I>, 3> a{vec(c.in.a[0]), vec(c.in.a[1]), vec(c.in.a[2])};
       const Vec3<I> A = vec(c.in.A);
-      const I r = exact(c.in.r), AA = dot(A, A), R = slab_radius_term(r, AA);
+      const I r = dd_enclosure(c.in.r), AA = dot(A, A), R = slab_radius_term(r, AA);
       for (int i = 0; i < 3; ++i) {
-        s[i] = exact(c.s[i]) + I(-Es, Es);
-        top[i] = exact(c.top[i]) + I(-Et, Et);
+        s[i] = dd_enclosure(c.s[i], Es);
+        top[i] = dd_enclosure(c.top[i], Et);
       }
       const auto point = [&](SlabRef p) -> SlabPoint<I> {
-        if (p.src < 0 || p.src >= slab_crossing_src(2, 0, 0)) throw StaticUndecided{};
+        if (p.src < 0 || p.src >= slab_src_count) throw StaticUndecided{};
         if (p.src < 3) return {a[p.src], I(1), SlabKind::vertex, p.src};
-        const int k = p.src - 3, plane = k / 9, pos = k % 9 / 3, neg = k % 3;
+        const auto [plane, pos, neg] = slab_crossing_of(p.src);
         const std::array<I, 3>& h = plane == 0 ? s : top;
         return slab_crossing(a[pos], h[pos], a[neg], h[neg]);
       };
@@ -351,23 +349,22 @@ class EscalatingTriangleSigns {
     const VertexForms& f = c.forms;  // made by enclosed() beforehand, for this test
     const VertexFormBounds& e = vertex_form_bounds();
     const double M3 = c.M2 * c.M2 * c.M2;
-    const auto enclose = [](const DD& v, double err) { return I(v.v.x[0]) + I(v.v.x[1]) + I(-err, err); };
     std::array<I, 3> D;
     std::array<I, 6> P, G;
     if (f.has_D)
-      for (int k = 0; k < 3; ++k) D[k] = enclose(f.D[k], e.D * M3);
+      for (int k = 0; k < 3; ++k) D[k] = dd_enclosure(f.D[k], e.D * M3);
     if (f.has_P)
-      for (int k = 0; k < 6; ++k) P[k] = enclose(f.P[k], e.P * (M3 * c.M2));
+      for (int k = 0; k < 6; ++k) P[k] = dd_enclosure(f.P[k], e.P * (M3 * c.M2));
     if (f.has_G)
-      for (int k = 0; k < 6; ++k) G[k] = enclose(f.G[k], e.G * (M3 * M3));
+      for (int k = 0; k < 6; ++k) G[k] = dd_enclosure(f.G[k], e.G * (M3 * M3));
     const auto coords = [&](SlabRef p) {
-      if (p.src < 0 || p.src >= slab_crossing_src(2, 0, 0)) throw StaticUndecided{};
+      if (p.src < 0 || p.src >= slab_src_count) throw StaticUndecided{};
       std::array<I, 3> x{I(0), I(0), I(0)};
       if (p.src < 3) {
         x[p.src] = I(1);
         return x;
       }
-      const int k = p.src - 3, plane = k / 9, pos = k % 9 / 3, neg = k % 3;
+      const auto [plane, pos, neg] = slab_crossing_of(p.src);
       const std::array<I, 3>& h = plane == 0 ? s : top;
       x[neg] = h[pos];
       x[pos] = -h[neg];

@@ -69,6 +69,14 @@ struct SlabRef {
   int src = -1;
 };
 inline constexpr int slab_crossing_src(int plane, int pos, int neg) { return 3 + 9 * plane + 3 * pos + neg; }
+inline constexpr int slab_src_count = slab_crossing_src(2, 0, 0);  // vertices and crossings: 0 .. 20
+// A crossing's src read back (3 <= src < slab_src_count).
+struct SlabCrossingSrc {
+  int plane, pos, neg;
+};
+inline constexpr SlabCrossingSrc slab_crossing_of(int src) { return {(src - 3) / 9, (src - 3) % 9 / 3, (src - 3) % 3}; }
+static_assert(slab_crossing_of(slab_crossing_src(1, 2, 0)).plane == 1 && slab_crossing_of(slab_crossing_src(1, 2, 0)).pos == 2 &&
+              slab_crossing_of(slab_crossing_src(1, 2, 0)).neg == 0);
 
 template <class NT>
 struct SlabPoint {
