@@ -5,6 +5,7 @@
 //   judge_exec.cpp     a co-process answering `certcyl query` lines
 //   judge_plugin.cpp   a C plugin (certcyl/plugin.h) run in a child process
 //   judge_report.cpp   the outcomes, the results folder and the summary table
+//   judge_html.cpp     the results folder's page, index.html
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -16,6 +17,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <istream>
+#include <map>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -114,10 +116,53 @@ PluginInfo inspect_plugin(const std::string& path);
 // The child is killed when one call gives no answer within `timeout`.
 Answers run_plugin(const std::string& path, const std::vector<Case>& cases, const Timeout& timeout);
 
+// The judgement of one query and family (family "all": the query's), as families.csv counts
+// it: the outcomes by the study's name, the failures (false positives and negatives) and the
+// failure rate among the certified cases with its 95% Wilson interval (NaN when none is
+// certified).
+struct FamilyJudgement {
+  std::string query, family;
+  std::size_t cases = 0, certified = 0, failures = 0;
+  std::map<std::string, std::size_t> outcomes;
+  double rate = 0, lo95 = 0, hi95 = 0;
+  std::size_t at(const std::string& outcome) const {
+    const auto it = outcomes.find(outcome);
+    return it == outcomes.end() ? 0 : it->second;
+  }
+};
+
+// A case the method gets wrong (a false positive or negative): the method's answer as given
+// and the study's outcome.
+struct Counterexample {
+  const Case* c = nullptr;
+  std::string answer, outcome;
+};
+
+// What the results folder reports: the method, the cases judged, one row per query and family
+// then one per query (family "all"), in families.csv's order, and the counterexamples, one per
+// distinct input, the smallest |gap| first.
+struct Judgement {
+  std::string method;
+  std::size_t cases = 0, judged = 0;
+  std::vector<FamilyJudgement> rows;
+  std::vector<Counterexample> counterexamples;
+  std::string failure;  // why not every case was judged (empty: all were)
+};
+
 // Writes dir/families.csv, dir/counterexamples.jsonl, dir/answers.jsonl (an answers file of
-// the answered cases, in the cases' order: {"id", "answer"} with the answer as judged) and
-// dir/summary.txt, and prints the summary table on `out`.
+// the answered cases, in the cases' order: {"id", "answer"} with the answer as judged),
+// dir/summary.txt and dir/index.html (write_report_page), and prints the summary table and
+// "report: dir/index.html" on `out`.
 void write_results(const std::filesystem::path& dir, const std::string& method, const std::vector<Case>& cases,
                    const Answers& answers, std::ostream& out);
+
+
+// Writes `file`, one self-contained HTML page (no script, no external resource: the figures are
+// inline SVG) for a reader who does not know certcyl: what was tested, the failure rate of each
+// family with its 95% interval, and the five most instructive counterexamples (one per failing
+// query and family first, each its family's clearest error, the largest |gap|), each drawn in two
+// projections with the certified answer, the method's and the gap. Throws std::runtime_error
+// when it cannot be written.
+void write_report_page(const std::filesystem::path& file, const Judgement& judgement);
 
 }  // namespace certcyl::cli::judging

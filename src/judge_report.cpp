@@ -2,7 +2,7 @@
 // answer, "uncertified" where the certified query was undecided), counted per query and family
 // with a 95% Wilson interval of the failure rate (failures: the study's disagreements, false
 // positives and false negatives, among the certified cases), the counterexamples, the answers
-// as judged, and the summary table.
+// as judged, and the summary table; the page (judge_html.cpp) is written from the same counts.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "judge_internal.hpp"
 #include "study_internal.hpp"
@@ -103,11 +104,14 @@ void write_results(const fs::path& dir, const std::string& method, const std::ve
   fs::create_directories(dir);
   std::map<std::pair<std::string, std::string>, Counts> by_family;  // (query, family)
   std::map<std::string, Counts> by_query;
-  std::vector<std::pair<const Case*, std::string>> counterexamples;  // with the outcome
-  std::size_t judged = 0;
+  std::vector<Counterexample> counterexamples;
+  Judgement j;
+  j.method = method;
+  j.cases = cases.size();
+  j.failure = answers.failure;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     if (!answers.answers[i]) continue;
-    ++judged;
+    ++j.judged;
     const Case& c = cases[i];
     study::Instance inst;
     inst.certified = c.certified;
@@ -118,8 +122,20 @@ void write_results(const fs::path& dir, const std::string& method, const std::ve
       ++n->outcomes[outcome];
     }
     if (c.certified != Answer::undecided && study::disagrees(study::judge(answers.answers[i]->output, c.certified)))
-      counterexamples.emplace_back(&c, outcome);
+      counterexamples.push_back({&c, answers.answers[i]->answer, outcome});
   }
+  auto judged_row = [](const std::string& query, const std::string& family, const Counts& n) {
+    FamilyJudgement r{query, family, n.cases, n.certified(), n.failures(), n.outcomes, 0, 0, 0};
+    if (r.certified > 0) {
+      r.rate = static_cast<double>(r.failures) / static_cast<double>(r.certified);
+      std::tie(r.lo95, r.hi95) = wilson(r.failures, r.certified);
+    } else {
+      r.rate = r.lo95 = r.hi95 = std::numeric_limits<double>::quiet_NaN();
+    }
+    return r;
+  };
+  for (const auto& [key, n] : by_family) j.rows.push_back(judged_row(key.first, key.second, n));
+  for (const auto& [query, n] : by_query) j.rows.push_back(judged_row(query, "all", n));
 
   // families.csv and the table, one row per query and family, then one per query (family "all").
   std::ofstream csv(dir / "families.csv");
@@ -127,51 +143,46 @@ void write_results(const fs::path& dir, const std::string& method, const std::ve
   for (const char* o : kOutcomes) csv << ',' << o;
   csv << ",failures,failure_rate,failure_rate_lo95,failure_rate_hi95\n";
   std::ostringstream table;
-  table << "certcyl judge: " << method << ", " << judged << " of " << cases.size() << " cases judged\n";
+  table << "certcyl judge: " << method << ", " << j.judged << " of " << cases.size() << " cases judged\n";
   char line[256];
   std::snprintf(line, sizeof line, "%-24s %-20s %6s %6s %6s %6s %6s %6s %6s %6s %6s  %s\n", "query", "family", "cases", "agree",
                 "f.pos", "f.neg", "mism.", "undec.", "error", "inval.", "uncert", "failure rate [95% CI]");
   table << line;
-  auto row = [&](const std::string& query, const std::string& family, const Counts& n) {
-    csv << csv_field(method) << ',' << csv_field(query) << ',' << csv_field(family) << ',' << n.cases;
+  for (const FamilyJudgement& n : j.rows) {
+    csv << csv_field(method) << ',' << csv_field(n.query) << ',' << csv_field(n.family) << ',' << n.cases;
     for (const char* o : kOutcomes) csv << ',' << n.at(o);
-    csv << ',' << n.failures();
+    csv << ',' << n.failures;
     std::string rate = "-";
-    if (n.certified() > 0) {
-      const double p = static_cast<double>(n.failures()) / static_cast<double>(n.certified());
-      const auto [lo, hi] = wilson(n.failures(), n.certified());
-      csv << ',' << detail::num(p) << ',' << detail::num(lo) << ',' << detail::num(hi) << '\n';
-      rate = percent(p) + " [" + percent(lo) + ", " + percent(hi) + "]";
+    if (n.certified > 0) {
+      csv << ',' << detail::num(n.rate) << ',' << detail::num(n.lo95) << ',' << detail::num(n.hi95) << '\n';
+      rate = percent(n.rate) + " [" + percent(n.lo95) + ", " + percent(n.hi95) + "]";
     } else {
       csv << ",,,\n";
     }
-    std::snprintf(line, sizeof line, "%-24s %-20s %6zu %6zu %6zu %6zu %6zu %6zu %6zu %6zu %6zu  %s\n", query.c_str(), family.c_str(), n.cases,
-                  n.at("agree"), n.at("false_positive"), n.at("false_negative"), n.at("class_mismatch"), n.at("undecided"),
+    std::snprintf(line, sizeof line, "%-24s %-20s %6zu %6zu %6zu %6zu %6zu %6zu %6zu %6zu %6zu  %s\n", n.query.c_str(), n.family.c_str(),
+                  n.cases, n.at("agree"), n.at("false_positive"), n.at("false_negative"), n.at("class_mismatch"), n.at("undecided"),
                   n.at("error"), n.at("invalid"), n.at("uncertified"), rate.c_str());
     table << line;
-  };
-  for (const auto& [key, n] : by_family) row(key.first, key.second, n);
-  for (const auto& [query, n] : by_query) row(query, "all", n);
+  }
   table << "failures: false positives and false negatives among the certified cases (the study's disagreements)\n";
 
   // counterexamples.jsonl: smallest |gap| first, one line per distinct input.
   std::stable_sort(counterexamples.begin(), counterexamples.end(),
-                   [](const auto& a, const auto& b) { return gap_size(*a.first) < gap_size(*b.first); });
+                   [](const Counterexample& a, const Counterexample& b) { return gap_size(*a.c) < gap_size(*b.c); });
   std::ofstream cx(dir / "counterexamples.jsonl");
   std::set<std::string> seen;
-  std::size_t written = 0;
-  for (const auto& [c, outcome] : counterexamples) {
-    nlohmann::ordered_json input = query_line(*c);
+  for (const Counterexample& e : counterexamples) {
+    nlohmann::ordered_json input = query_line(*e.c);
     input.erase("id");
     if (!seen.insert(input.dump()).second) continue;
-    nlohmann::ordered_json l = case_line(*c);
-    l["meta"]["answer"] = answers.answers[static_cast<std::size_t>(c - cases.data())]->answer;
-    l["meta"]["outcome"] = outcome;
+    nlohmann::ordered_json l = case_line(*e.c);
+    l["meta"]["answer"] = e.answer;
+    l["meta"]["outcome"] = e.outcome;
     l["meta"]["method"] = method;
     cx << l.dump() << '\n';
-    ++written;
+    j.counterexamples.push_back(e);
   }
-  table << written << " counterexamples (distinct inputs) in " << (dir / "counterexamples.jsonl").string() << '\n';
+  table << j.counterexamples.size() << " counterexamples (distinct inputs) in " << (dir / "counterexamples.jsonl").string() << '\n';
   if (!answers.failure.empty()) table << "not all cases judged: " << answers.failure << '\n';
 
   // answers.jsonl: the answers as judged, an answers file for the same cases (a shard's, merged).
@@ -185,7 +196,8 @@ void write_results(const fs::path& dir, const std::string& method, const std::ve
     f->flush();
     if (!*f) throw std::runtime_error("cannot write the results in " + dir.string());
   }
-  out << table.str();
+  write_report_page(dir / "index.html", j);
+  out << table.str() << "report: " << (dir / "index.html").string() << '\n';
 }
 
 }  // namespace certcyl::cli::judging

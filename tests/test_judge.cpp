@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -240,6 +241,53 @@ BOOST_AUTO_TEST_CASE(answers_file_scored_per_family) {
     if (count(row, "failures") == count(row, "cases") - count(row, "uncertified") && count(row, "failures") > 0)
       BOOST_TEST(std::stod(row.at("failure_rate_hi95")) == 1.0);
   }
+}
+
+BOOST_AUTO_TEST_CASE(report_page_is_self_contained_and_names_the_failures) {
+  // index.html: a method always answering "separated" on the tangent lines, under a label with
+  // markup in it. The label is shown as text, never as markup; the page loads nothing; every
+  // family is a row, shaded exactly where a certified answer meets; one figure per distinct
+  // meeting input up to five, each two inline SVG drawings.
+  Scratch s;
+  BOOST_TEST_REQUIRE(s.run(kCertcyl + " cases --query line_cylinder --family tangent --family uniform --size 4 > cases.jsonl").status == 0);
+  std::set<std::string> meeting_inputs;
+  std::map<std::string, bool> family_fails;
+  {
+    std::ofstream answers(s / "answers.jsonl");
+    for (const std::string& l : lines_of(slurp(s / "cases.jsonl"))) {
+      json c = json::parse(l);
+      answers << json{{"id", c["id"]}, {"answer", "separated"}}.dump() << '\n';
+      const std::string certified = c["meta"]["certified"];
+      const bool meets = certified == "touching" || certified == "overlapping";
+      family_fails[c["meta"]["family"]] |= meets;
+      c.erase("id"), c.erase("meta");
+      if (meets) meeting_inputs.insert(c.dump());
+    }
+  }
+  BOOST_TEST_REQUIRE(family_fails.size() == 2u);
+  BOOST_TEST_REQUIRE(family_fails.at("tangent"));
+  const Run r = s.run(kCertcyl + " judge --cases cases.jsonl --answers answers.jsonl --name mine --label '<script>x</script> & co'");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  const fs::path page_file = s.dir / "results/mine/index.html";
+  BOOST_TEST(r.out.find("report: results/mine/index.html\n") != std::string::npos, r.out);
+  const std::string page = slurp(page_file);
+  BOOST_TEST(page.find("<script") == std::string::npos);
+  BOOST_TEST(page.find("&lt;script&gt;x&lt;/script&gt; &amp; co") != std::string::npos);
+  for (const char* loads : {"src=", "<img", "<link", "url(", "@import", "href=\"http"}) BOOST_TEST(page.find(loads) == std::string::npos, loads);
+  for (const auto& [family, fails] : family_fails) {
+    const std::string row = std::string(fails ? "<tr class=\"wrong\">" : "<tr>") + "<td>" + family + "</td>";
+    BOOST_TEST(page.find(row) != std::string::npos, row);
+  }
+  auto occurrences = [&](const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = page.find(what); at != std::string::npos; at = page.find(what, at + 1)) ++n;
+    return n;
+  };
+  const std::size_t figures = std::min<std::size_t>(5, meeting_inputs.size());
+  BOOST_TEST(figures > 0u);
+  BOOST_TEST(occurrences("<figure class=\"counterexample\"") == figures);
+  BOOST_TEST(occurrences("<svg class=\"view\"") == 2 * figures);
+  BOOST_TEST(occurrences("<td class=\"answer\">separated</td>") == figures);
 }
 
 BOOST_AUTO_TEST_CASE(method_names_with_commas_and_quotes_are_quoted_in_the_csv) {

@@ -2,13 +2,15 @@
 """Checks a `certcyl judge` results folder of an example: every case judged, the method fails
 somewhere (the examples are naive double tests of hard cases), and the report names the failures
 where they are: each family with failures has a counterexample of its own, each counterexample's
-family is counted as failing in families.csv and in the printed table, and is answered by
+family is counted as failing in families.csv, in the printed table and in the page index.html
+(its row shaded, the total of failures at the top, counterexamples drawn), and is answered by
 `certcyl query` as the certified answer it records.
 
 usage: check_report.py CERTCYL RESULTS_FOLDER METHOD"""
 import csv
 import json
 import os
+import re
 import subprocess
 import sys
 
@@ -44,6 +46,19 @@ def main():
         line = [l for l in table if l.split()[:2] == [query, family]]
         if len(line) != 1 or int(line[0].split()[4]) + int(line[0].split()[5]) == 0:
             fail("the table does not show the failures of %s %s" % (query, family))
+    # The page: the failures counted at the top, each family's row shaded where it fails,
+    # min(5, counterexamples) drawn.
+    page = open(os.path.join(folder, "index.html"), encoding="utf-8").read()
+    total = sum(int(r["failures"]) for r in rows if r["family"] == "all")
+    if '<p id="verdict"><b>%d failure' % total not in page:
+        fail("index.html does not open on the %d failures" % total)
+    for query, family in failing:
+        section = page[page.index('<h3 id="family-%s">' % query):]
+        if '<tr class="wrong"><td>%s</td>' % family not in section[:section.index("</table>")]:
+            fail("index.html does not shade the row of %s %s" % (query, family))
+    drawn = re.findall(r'<figure class="counterexample" id="cx-\d+" data-id="([^"]*)"', page)
+    if len(drawn) != min(5, len(counterexamples)) or not set(drawn) <= {c["id"] for c in counterexamples}:
+        fail("index.html draws %s of %d counterexamples" % (drawn, len(counterexamples)))
     # A counterexample is a ready-to-run query line: certcyl answers it with the certified answer.
     lines = "".join(json.dumps(c) + "\n" for c in counterexamples)
     out = subprocess.run([certcyl, "query"], input=lines, capture_output=True, text=True, check=True).stdout
