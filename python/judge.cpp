@@ -153,7 +153,7 @@ py::tuple judge(py::function function, const std::string& query, const std::stri
   std::ostringstream summary;
   {
     const py::gil_scoped_release release;
-    cli::judging::write_results(dir, method, cases, answers, summary);
+    cli::judging::write_results(dir, dir, method, cases, answers, summary);
   }
   if (error) std::rethrow_exception(error);
   return py::make_tuple(summary.str(), dir.string());

@@ -81,7 +81,9 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
       method = plugin->name;
     }
     if (!o.label.empty()) method = o.label;
-    write_results(sharded ? partial : folder, method, cases, answers, out);
+    // A complete shard is renamed from its temporary name below: the printed paths name the result.
+    const fs::path written = sharded ? partial : folder;
+    write_results(written, sharded && answers.failure.empty() ? shard_folder : written, method, cases, answers, out);
     out.flush();
     if (!answers.failure.empty()) {
       err << "certcyl judge: " << answers.failure << '\n';

@@ -152,9 +152,10 @@ struct Judgement {
 // Writes dir/families.csv, dir/counterexamples.jsonl, dir/answers.jsonl (an answers file of
 // the answered cases, in the cases' order: {"id", "answer"} with the answer as judged),
 // dir/summary.txt and dir/index.html (write_report_page), and prints the summary table and
-// "report: dir/index.html" on `out`.
-void write_results(const std::filesystem::path& dir, const std::string& method, const std::vector<Case>& cases,
-                   const Answers& answers, std::ostream& out);
+// "report: shown/index.html" on `out`; `shown` is where the files will be when the command ends
+// (a shard's folder is written under a temporary name and renamed when complete).
+void write_results(const std::filesystem::path& dir, const std::filesystem::path& shown, const std::string& method,
+                   const std::vector<Case>& cases, const Answers& answers, std::ostream& out);
 
 
 // Writes `file`, one self-contained HTML page (no script, no external resource: the figures are

@@ -99,8 +99,8 @@ Answered answered_line(const nlohmann::json& j) {
   throw std::invalid_argument("answer: missing");
 }
 
-void write_results(const fs::path& dir, const std::string& method, const std::vector<Case>& cases, const Answers& answers,
-                   std::ostream& out) {
+void write_results(const fs::path& dir, const fs::path& shown, const std::string& method, const std::vector<Case>& cases,
+                   const Answers& answers, std::ostream& out) {
   fs::create_directories(dir);
   std::map<std::pair<std::string, std::string>, Counts> by_family;  // (query, family)
   std::map<std::string, Counts> by_query;
@@ -182,7 +182,7 @@ void write_results(const fs::path& dir, const std::string& method, const std::ve
     cx << l.dump() << '\n';
     j.counterexamples.push_back(e);
   }
-  table << j.counterexamples.size() << " counterexamples (distinct inputs) in " << (dir / "counterexamples.jsonl").string() << '\n';
+  table << j.counterexamples.size() << " counterexamples (distinct inputs) in " << (shown / "counterexamples.jsonl").string() << '\n';
   if (!answers.failure.empty()) table << "not all cases judged: " << answers.failure << '\n';
 
   // answers.jsonl: the answers as judged, an answers file for the same cases (a shard's, merged).
@@ -197,7 +197,7 @@ void write_results(const fs::path& dir, const std::string& method, const std::ve
     if (!*f) throw std::runtime_error("cannot write the results in " + dir.string());
   }
   write_report_page(dir / "index.html", j);
-  out << table.str() << "report: " << (dir / "index.html").string() << '\n';
+  out << table.str() << "report: " << (shown / "index.html").string() << '\n';
 }
 
 }  // namespace certcyl::cli::judging

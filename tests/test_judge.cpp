@@ -520,6 +520,10 @@ BOOST_AUTO_TEST_CASE(shards_concatenated_judge_as_one_run) {
   for (const char* k : {"0", "1"}) {
     const Run r = s.run(kCertcyl + " judge --cases cases.jsonl" + method + " --name sharded --shard " + k + "/2");
     BOOST_TEST_REQUIRE(r.status == 0, r.err);
+    // The printed report is where the page is once the shard is complete (not its temporary name).
+    const std::string page = "results/sharded/shard-" + std::string(k) + "-of-2/index.html";
+    BOOST_TEST(r.out.find("report: " + page + "\n") != std::string::npos, r.out);
+    BOOST_TEST(fs::exists(s.dir / page));
   }
   std::string merged;
   for (int k = 0; k < 2; ++k) {
