@@ -969,11 +969,11 @@ class CylinderCylinderSolver {
   // Newton's method on the optimality conditions in QD (dd_real) from the world
   // point X0; its point or its direction checked exactly.
   template <class QD>
-  Refined refine_in(const Point3<QD>& X0, int epsilon_exponent, int touching_exponent) {
+  Refined refine_in(const Point3<QD>& X0, int epsilon_exponent, int touching_exponent, unsigned first_pieces = 0, int max_steps = 24) {
     Refined r;
     const CylinderPair<QD> d = world_pair<QD>();
-    ActiveSetProblem<QD> problem(d, -epsilon_exponent);
-    const std::optional<ActiveSetOptimum<QD>> o = problem.solve(X0);
+    ActiveSetProblem<QD> problem(d, -epsilon_exponent, true);
+    const std::optional<ActiveSetOptimum<QD>> o = problem.solve(X0, first_pieces, first_pieces != 0, max_steps);
     if (!o) return r;
     result_.counters.newton_steps += static_cast<std::uint32_t>(o->iterations);
     if (!finite_q(o->value) || !finite_q(o->point)) return r;
@@ -1029,6 +1029,7 @@ class CylinderCylinderSolver {
     // The same Newton iteration in double first (a double-double step costs about ten double
     // ones): from its point, double-double needs a step or two.
     Point3<double> start = *optimum_point_;
+    std::optional<Point3<double>> vertex;
     {
       ActiveSetProblem<double> problem(dbl_, 48);
       const std::optional<ActiveSetOptimum<double>> o = problem.solve(start);
@@ -1036,12 +1037,40 @@ class CylinderCylinderSolver {
         result_.counters.newton_steps += static_cast<std::uint32_t>(o->iterations);
         start = o->point;
       }
+      // Where two caps meet almost flat (the start above ends with the two caps active), the
+      // optimum is usually a vertex of all four pieces, at the rim, that double-double reaches
+      // from there only by a walk of several steps along the nearly flat crease of the caps;
+      // double takes a few cheap steps to it from all four pieces (at most eight: where the caps
+      // coincide the system is singular and it does not converge). It is tried first (one
+      // attempt of at most three double-double steps: from the right vertex one or two decide)
+      // when double ends there and the axes are not parallel (parallel caps have no crease: their
+      // optimum is where double found it); otherwise the usual start follows.
+      if (o && o->pieces == 5u && axes_surely_not_parallel()) {
+        const std::optional<ActiveSetOptimum<double>> v = problem.solve(*optimum_point_, 15u, true, 8);
+        if (v) result_.counters.newton_steps += static_cast<std::uint32_t>(v->iterations);
+        if (v && v->pieces == 15u && finite(v->point)) vertex = v->point;
+      }
+    }
+    if (vertex) {
+      const Refined dd = refine_in<dd_real>(vertex->map([](double x) { return dd_real(x); }), -96, -98, 15u, 3);
+      if (dd.decided) return true;
+      if (dd.near_touching) return pass();
     }
     const Refined dd = refine_in<dd_real>(start.map([](double x) { return dd_real(x); }), -96, -98);
     if (dd.decided) return true;
     if (dd.near_touching) return pass();
     if (smoothed_in<dd_real>(96, 60)) return true;
     return optimiser_exact() || pass();
+  }
+
+  // Whether A0 x A1 != 0 is proved by intervals (a guess that steers the refine stage; false
+  // when the enclosure cannot tell).
+  bool axes_surely_not_parallel() {
+    const CylinderPair<Interval>& d = iv();
+    CGAL::Protect_FPU_rounding<true> upward;
+    const Vec3<Interval> c = cross(d.A0, d.A1);
+    const auto nonzero = [](const Interval& x) { return x.inf() > 0 || x.sup() < 0; };
+    return nonzero(c.x) || nonzero(c.y) || nonzero(c.z);
   }
 
   // The ring frame (detail/cylinder_ring_frame.hpp): the input times L 2^e in Mpzf, built when

@@ -27,6 +27,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <optional>
@@ -54,7 +55,13 @@ class ActiveSetProblem {
   // with b: rho = 2^(-5b/6) / L^2 (2^-80 for dd_real: the system's conditioning, 2^(5b/6),
   // stays well inside the precision), the multiplier and joining tolerances 2^(-5b/6), a stalled
   // phi step 2^(-2b/3).
-  ActiveSetProblem(const CylinderPair<NT>& d, int b) : d_(d) {
+  //
+  // stop_when_decided: Newton's method also ends as soon as its point X has sigma(X) < 1 - 2^(-5b/6)
+  // or its direction D (the multipliers' combination) separates with ratio |D.T| / phi2(D) above
+  // 1 + 2^(-5b/6), both evaluated in NT: the caller's exact check then decides, without the steps
+  // that would only sharpen phi beyond what the decision needs. The answer to "is phi* below or
+  // above 1" is all the refine stage asks; near touching, the full convergence runs as before.
+  ActiveSetProblem(const CylinderPair<NT>& d, int b, bool stop_when_decided = false) : d_(d), stop_when_decided_(stop_when_decided) {
     const auto two_power = [](long e) {
       Rational r(1);
       mpq_div_2exp(r.mpq(), r.mpq(), static_cast<mp_bitcnt_t>(-e));
@@ -79,10 +86,13 @@ class ActiveSetProblem {
     rho_ = fine_ / L2;
   }
 
-  std::optional<ActiveSetOptimum<NT>> solve(const Point3<NT>& X0) {
-    // The caps on X0's side, and the starting active set: the pieces within 2^-6 of the largest
-    // (a piece that is not active gets a negative multiplier and leaves). When Newton's method
-    // fails from there, it starts again from the pieces within 2^-2, then from all four.
+  std::optional<ActiveSetOptimum<NT>> solve(const Point3<NT>& X0, unsigned first = 0, bool only_first = false, int max_steps = 24) {
+    max_steps_ = max_steps;
+    // The caps on X0's side, and the starting active set: `first` when given, then the pieces
+    // within 2^-6 of the largest (a piece that is not active gets a negative multiplier and
+    // leaves). When Newton's method fails from there, it starts again from the pieces within 2^-2,
+    // then from all four. only_first: a single attempt from `first`, no correction of its set.
+    // max_steps: Newton steps per attempt.
     for (int i = 0; i < 2; ++i) side_[i] = sign_is(dot(X0 - m_[i], *A_[i]), CGAL::NEGATIVE) ? -1 : 1;
     std::array<NT, 4> p = values(X0);
     const NT top = nt::max(nt::max(p[0], p[1]), nt::max(p[2], p[3]));
@@ -93,10 +103,11 @@ class ActiveSetProblem {
         if (nt::compare(p[k], near) != CGAL::SMALLER) S |= 1u << k;
       return S;
     };
-    const std::array<unsigned, 3> starts = {within(64), within(4), 15u};
+    const std::array<unsigned, 4> starts = {first ? first : within(64), within(64), within(4), 15u};
     int iterations = 0;
+    if (first && only_first) return from(X0, top, first, iterations, 1);
     for (std::size_t start = 0; start < starts.size(); ++start) {
-      if (start > 0 && starts[start] == starts[start - 1]) continue;
+      if (start > 0 && std::find(starts.begin(), starts.begin() + static_cast<long>(start), starts[start]) != starts.begin() + static_cast<long>(start)) continue;
       std::optional<ActiveSetOptimum<NT>> o = from(X0, top, starts[start], iterations);
       if (o) return o;
     }
@@ -105,15 +116,23 @@ class ActiveSetProblem {
 
  private:
   // Newton's method from S, then corrections of S: a piece with a multiplier below -fine leaves,
-  // a piece above phi by more than fine phi joins. The point with the least sigma over the
-  // attempts is returned (the checks are exact: any point is a fair candidate).
-  std::optional<ActiveSetOptimum<NT>> from(const Point3<NT>& X0, const NT& top, unsigned S, int& iterations) {
+  // a piece above phi by more than fine phi joins; an active set already tried ends the
+  // corrections (each attempt starts from X0, so it would repeat itself). At most `attempts`
+  // attempts. The point with the least sigma over the attempts is returned (the checks are
+  // exact: any point is a fair candidate), or the point of an attempt that stop_when_decided
+  // ended.
+  std::optional<ActiveSetOptimum<NT>> from(const Point3<NT>& X0, const NT& top, unsigned S, int& iterations, int attempts = 4) {
     std::optional<ActiveSetOptimum<NT>> best;
     const NT& tol = fine_;
-    for (int attempt = 0; attempt < 4; ++attempt) {
+    unsigned tried = 0;  // bit S: active set S tried
+    for (int attempt = 0; attempt < attempts; ++attempt) {
+      if (tried >> S & 1u) break;
+      tried |= 1u << S;
       std::optional<Newton> n = newton(X0, top, S);
+      const bool early = n && n->decided;
       if (!n) break;
       S = n->S;
+      tried |= 1u << S;
       iterations += n->iterations;
       const std::array<NT, 4> p = values(n->X);
       ActiveSetOptimum<NT> o;
@@ -123,7 +142,8 @@ class ActiveSetProblem {
       for (unsigned k = 0; k < 2; ++k)
         if (S >> k & 1u) o.direction = o.direction + n->lambda[k] * gradient(k, n->X);
       o.pieces = S;
-      if (!best || nt::compare(o.value, best->value) == CGAL::SMALLER) best = o;
+      if (!best || nt::compare(o.value, best->value) == CGAL::SMALLER || early) best = o;
+      if (early) break;
       int worst = -1;
       for (unsigned k = 0; k < 4; ++k)
         if ((S >> k & 1u) && nt::compare(n->lambda[k], NT(-tol)) == CGAL::SMALLER && (worst < 0 || n->lambda[k] < n->lambda[worst]))
@@ -147,7 +167,8 @@ class ActiveSetProblem {
     NT phi;
     std::array<NT, 4> lambda;
     int iterations;
-    unsigned S;  // the active set it ended with
+    unsigned S;             // the active set it ended with
+    bool decided = false;   // ended by stop_when_decided
   };
 
   static int cylinder(unsigned k) { return static_cast<int>(k / 2); }
@@ -176,6 +197,46 @@ class ActiveSetProblem {
     return (c_[i] / nt::sqrt(dot(w, w))) * cross(A, w);
   }
 
+  // Whether X is clearly inside both (sigma(X) < 1 - fine) or the direction of the multipliers
+  // clearly separates (|D.T| > (1 + fine) phi2(D), phi2(D) = |D.A0| + |D.A1| + 2 r0 |D x A0| / |A0|
+  // + 2 r1 |D x A1| / |A1|), in NT: a guess for stop_when_decided, checked exactly by the caller.
+  bool decided(const Newton& s) const {
+    const std::array<NT, 4> p = values(s.X);
+    const NT top = nt::max(nt::max(p[0], p[1]), nt::max(p[2], p[3]));
+    const NT one = nt::constant<NT>(1);
+    if (nt::compare(top, NT(one - fine_)) == CGAL::SMALLER) return true;
+    if (nt::compare(top, NT(one + fine_)) != CGAL::LARGER) return false;
+    Vec3<NT> D{nt::constant<NT>(0), nt::constant<NT>(0), nt::constant<NT>(0)};
+    for (unsigned k = 0; k < 2; ++k)
+      if (s.S >> k & 1u) D = D + s.lambda[k] * gradient(k, s.X);
+    const NT two = nt::constant<NT>(2);
+    const NT phi2 = abs_enclosure(dot(D, d_.A0)) + abs_enclosure(dot(D, d_.A1)) +
+                    two * d_.c0.radius * nt::sqrt(NT(squared_norm(cross(D, d_.A0)) / AA_[0])) +
+                    two * d_.c1.radius * nt::sqrt(NT(squared_norm(cross(D, d_.A1)) / AA_[1]));
+    return nt::compare(abs_enclosure(dot(D, d_.T)), NT((one + fine_) * phi2)) == CGAL::LARGER;
+  }
+
+  // J step = -F by Eigen's partial-pivoting LU on a matrix of the fixed size n (5 to 8): the
+  // dynamic-size LU's loops cost about as much as the arithmetic at this size.
+  template <class Matrix, class Vector>
+  static Vector solve_fixed(const Matrix& J, const Vector& F, int n) {
+    Vector step(n);
+    const auto fixed = [&](auto size) {
+      constexpr int N = decltype(size)::value;
+      using M = Eigen::Matrix<NT, N, N>;
+      using V = Eigen::Matrix<NT, N, 1>;
+      const Eigen::PartialPivLU<M> lu(M(J.template topLeftCorner<N, N>()));
+      step = lu.solve(V(-F.template head<N>()));
+    };
+    switch (n) {
+      case 5: fixed(std::integral_constant<int, 5>{}); break;
+      case 6: fixed(std::integral_constant<int, 6>{}); break;
+      case 7: fixed(std::integral_constant<int, 7>{}); break;
+      default: fixed(std::integral_constant<int, 8>{}); break;
+    }
+    return step;
+  }
+
   // Newton's method on the system of S from X0; a piece that rises above phi on the way joins S
   // (with multiplier 0), and a step longer than a quarter of the size is shortened to it.
   std::optional<Newton> newton(const Point3<NT>& X0, const NT& phi0, unsigned S) const {
@@ -191,7 +252,7 @@ class ActiveSetProblem {
     const NT size = nt::sqrt(nt::max(AA_[0], AA_[1]));
     const NT reach = size / nt::constant<NT>(4);
     NT last_phi_step = nt::constant<NT>(1);
-    for (int it = 0; it < 24; ++it) {
+    for (int it = 0; it < max_steps_; ++it) {
       std::array<unsigned, 4> index{};
       int m = 0;
       for (unsigned k = 0; k < 4; ++k)
@@ -232,8 +293,7 @@ class ActiveSetProblem {
             }
         }
       }
-      const Eigen::PartialPivLU<Matrix> lu(J);
-      Vector step = lu.solve(Vector(-F));
+      Vector step = solve_fixed(J, F, n);
       for (int r = 0; r < n; ++r)
         if (!std::isfinite(nt::to_double(step(r)))) return std::nullopt;
       Vec3<NT> dX{step(0), step(1), step(2)};
@@ -256,6 +316,10 @@ class ActiveSetProblem {
         s.S |= joined;
         continue;
       }
+      if (stop_when_decided_ && decided(s)) {
+        s.decided = true;
+        return s;
+      }
       // Converged: phi to epsilon, X to 2^-20 of the size (along a segment or disc of minimisers
       // the steps are rounding noise divided by rho, and do not matter).
       if (nt::compare(abs_enclosure(step(3)), epsilon_) != CGAL::LARGER && nt::compare(big, NT(size / nt::constant<NT>(1L << 20))) != CGAL::LARGER) return s;
@@ -276,6 +340,8 @@ class ActiveSetProblem {
   }
 
   const CylinderPair<NT>& d_;
+  bool stop_when_decided_ = false;
+  int max_steps_ = 24;
   NT epsilon_;
   Point3<NT> m_[2];
   const Vec3<NT>* A_[2];
