@@ -80,8 +80,16 @@
 //                    of Grotschel, Lovasz and Schrijver, which provably reaches a certificate once
 //                    the precision is high enough. With the touching stage complete for touching
 //                    pairs, the query decides every valid input (the completeness theorem of the
-//                    paper). Only a caller's max_precision or prove_touching = false leaves it
-//                    bounded, and the answer undecided when no proof was found within it.
+//                    paper). How high: with the fourteen input numbers scaled to integers of
+//                    absolute value at most M, a pair that does not touch has
+//                    |phi* - 1| >= 2^-14337 M^-4096 (the paper's Theorem "gap", from the bound of
+//                    Jeronimo, Perrucci and Tsigaridas on the minimum of a polynomial on a compact
+//                    semialgebraic set), so every precision p >= 2^21 (3 + log2 M) decides it
+//                    (Theorem "precision"): linear in the input's bit size, and astronomically
+//                    pessimistic (about 4.4e9 bits for binary64 input of full range; the precisions
+//                    the stage reaches are reported per answer in ellipsoid_precision). Only a
+//                    caller's max_precision or prove_touching = false leaves it bounded, and the
+//                    answer undecided when no proof was found within it.
 // Undecided results carry the certified bounds gap().phi_lower <= phi* <= gap().phi_upper, so
 // |phi* - 1| <= gap().distance_bound().
 //
