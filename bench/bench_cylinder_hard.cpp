@@ -211,23 +211,10 @@ std::vector<Family> make_families() {
     // ulp of touching, on either side).
     Family f{c.name + ", rounded, ~1 ulp", {}, certcyl::Answer::undecided};
     for (int i = 0; i < kInstances; ++i) {
-      double w[4];
-      double norm = 0;
-      for (double& x : w) x = gauss(g), norm += x * x;
-      norm = std::sqrt(norm);
-      for (double& x : w) x /= norm;
-      const double a = w[0], bq = w[1], cq = w[2], d = w[3];
-      const double R[3][3] = {{a * a + bq * bq - cq * cq - d * d, 2 * (bq * cq - a * d), 2 * (bq * d + a * cq)},
-                              {2 * (bq * cq + a * d), a * a - bq * bq + cq * cq - d * d, 2 * (cq * d - a * bq)},
-                              {2 * (bq * d - a * cq), 2 * (cq * d + a * bq), a * a - bq * bq - cq * cq + d * d}};
-      const auto turn = [&R](const Point3<Rational>& p) {
-        const double x = 20 * CGAL::to_double(p.x), y = 20 * CGAL::to_double(p.y), z = 20 * CGAL::to_double(p.z);
-        return Point3<double>{R[0][0] * x + R[0][1] * y + R[0][2] * z, R[1][0] * x + R[1][1] * y + R[1][2] * z, R[2][0] * x + R[2][1] * y + R[2][2] * z};
-      };
-      const auto cyl = [&turn](const Cylinder<Rational>& q) { return Cylinder<double>{turn(q.p0), turn(q.p1), 20 * CGAL::to_double(q.radius)}; };
+      const cctest::RoundedRotation R(g, gauss, 20);
       HardPair h;
-      h.a = cyl(c.a);
-      h.b = cyl(c.b);
+      h.a = R.rounded(c.a);
+      h.b = R.rounded(c.b);
       h.qa = h.a.map([](double x) { return Rational(x); });
       h.qb = h.b.map([](double x) { return Rational(x); });
       f.pairs.push_back(h);

@@ -56,6 +56,32 @@ struct Rotation {
   }
 };
 
+// A random rotation computed in double (a normalised Gaussian quaternion), applied in double:
+// rounded(c) is cylinder c times `scale`, turned and rounded to binary64, so a touching pair
+// ends within about an ulp of touching, on either side (the "rounded" frame of the tests and of
+// bench/bench_cylinder_hard.cpp).
+struct RoundedRotation {
+  double m[3][3];
+  double scale = 1;
+  RoundedRotation(std::mt19937_64& g, std::normal_distribution<double>& gauss, double s) : scale(s) {
+    double w[4], norm = 0;
+    for (double& x : w) x = gauss(g), norm += x * x;
+    norm = std::sqrt(norm);
+    for (double& x : w) x /= norm;
+    const double a = w[0], b = w[1], c = w[2], d = w[3];
+    const double r[3][3] = {{a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c)},
+                            {2 * (b * c + a * d), a * a - b * b + c * c - d * d, 2 * (c * d - a * b)},
+                            {2 * (b * d - a * c), 2 * (c * d + a * b), a * a - b * b - c * c + d * d}};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) m[i][j] = r[i][j];
+  }
+  Point3<double> operator()(const Point3<Q>& p) const {
+    const double x = scale * CGAL::to_double(p.x), y = scale * CGAL::to_double(p.y), z = scale * CGAL::to_double(p.z);
+    return {m[0][0] * x + m[0][1] * y + m[0][2] * z, m[1][0] * x + m[1][1] * y + m[1][2] * z, m[2][0] * x + m[2][1] * y + m[2][2] * z};
+  }
+  Cylinder<double> rounded(const Cylinder<Q>& c) const { return {(*this)(c.p0), (*this)(c.p1), scale * CGAL::to_double(c.radius)}; }
+};
+
 // X -> R X + t, applied to a cylinder (radius unchanged): the answer is unchanged exactly.
 inline Cylinder<Q> move(const Cylinder<Q>& c, const Rotation& R, const Vec3<Q>& t) { return {R(c.p0) + t, R(c.p1) + t, c.radius}; }
 inline Cylinder<Q> translate(const Cylinder<Q>& c, const Vec3<Q>& t) { return {c.p0 + t, c.p1 + t, c.radius}; }

@@ -106,21 +106,8 @@ BOOST_AUTO_TEST_CASE(rounded_pairs_of_every_contact_type_are_decided_by_the_refi
   int refined = 0;
   for (const TouchingCase& c : base_touching_cases()) {
     for (int i = 0; i < 12; ++i) {
-      double w[4], norm = 0;
-      for (double& x : w) x = gauss(g), norm += x * x;
-      norm = std::sqrt(norm);
-      for (double& x : w) x /= norm;
-      const double a = w[0], b = w[1], cq = w[2], d = w[3];
-      const double R[3][3] = {{a * a + b * b - cq * cq - d * d, 2 * (b * cq - a * d), 2 * (b * d + a * cq)},
-                              {2 * (b * cq + a * d), a * a - b * b + cq * cq - d * d, 2 * (cq * d - a * b)},
-                              {2 * (b * d - a * cq), 2 * (cq * d + a * b), a * a - b * b - cq * cq + d * d}};
-      const auto turn = [&R](const Point3<Q>& p) {
-        const double x = 20 * CGAL::to_double(p.x), y = 20 * CGAL::to_double(p.y), z = 20 * CGAL::to_double(p.z);
-        return Point3<double>{R[0][0] * x + R[0][1] * y + R[0][2] * z, R[1][0] * x + R[1][1] * y + R[1][2] * z,
-                              R[2][0] * x + R[2][1] * y + R[2][2] * z};
-      };
-      const auto rounded = [&turn](const Cylinder<Q>& q) { return Cylinder<double>{turn(q.p0), turn(q.p1), 20 * CGAL::to_double(q.radius)}; };
-      const Cylinder<double> da = rounded(c.a), db = rounded(c.b);
+      const RoundedRotation R(g, gauss, 20);
+      const Cylinder<double> da = R.rounded(c.a), db = R.rounded(c.b);
       const auto to_q = [](double x) { return Q(x); };
       BOOST_TEST_CONTEXT(c.name << " rotation " << i) {
         const certcyl::CylinderCylinderResult r = certcyl::certified_cylinder_cylinder(da, db);
