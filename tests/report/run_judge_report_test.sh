@@ -18,16 +18,8 @@ src=$3
 work=$4
 check=$src/tests/report/check_judge_report.py
 
-if ! /usr/bin/python3 -c 'import matplotlib, numpy' 2> /dev/null; then
-  echo "skipped: /usr/bin/python3 has no matplotlib, needed to read the screenshot (bash scripts/install-deps.sh --study)"
-  exit 77
-fi
-chromium=$(command -v chromium || command -v chromium-browser || true)
-if [ -z "$chromium" ]; then
-  echo "FAILED: Chromium is not installed, but matplotlib is: the packages of scripts/install-deps.sh --study are"
-  echo "only partly installed; run  bash scripts/install-deps.sh --study  (it installs the Debian package chromium)"
-  exit 1
-fi
+# shellcheck source=prerequisites.sh
+source "$src/tests/report/prerequisites.sh" "needed to read the screenshot"
 
 rm -rf "$work"
 mkdir -p "$work"

@@ -14,16 +14,8 @@ certcyl=$1
 src=$2
 work=$3
 
-if ! /usr/bin/python3 -c 'import matplotlib, numpy' 2> /dev/null; then
-  echo "skipped: /usr/bin/python3 has no matplotlib, so the study draws no figures (bash scripts/install-deps.sh --study)"
-  exit 77
-fi
-chromium=$(command -v chromium || command -v chromium-browser || true)
-if [ -z "$chromium" ]; then
-  echo "FAILED: Chromium is not installed, but matplotlib is: the packages of scripts/install-deps.sh --study are"
-  echo "only partly installed; run  bash scripts/install-deps.sh --study  (it installs the Debian package chromium)"
-  exit 1
-fi
+# shellcheck source=prerequisites.sh
+source "$src/tests/report/prerequisites.sh" "so the study draws no figures"
 
 rm -rf "$work"
 mkdir -p "$work"
