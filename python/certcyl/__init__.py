@@ -188,8 +188,9 @@ def query(query, method="certified", nt=None, **operands):
 
 class JudgeResult:
     """The outcome of ``certcyl.judge``: summary (the table ``certcyl judge`` prints), folder
-    (the results folder: families.csv, counterexamples.jsonl, answers.jsonl, summary.txt) and
-    families (families.csv's rows as dicts, numbers as int or float)."""
+    (the results folder: families.csv, counterexamples.jsonl, answers.jsonl, summary.txt and
+    index.html, the one-page report) and families (families.csv's rows as dicts, numbers as int
+    or float)."""
 
     def __init__(self, summary, folder):
         import csv
@@ -229,8 +230,8 @@ def judge(function, query="ray_cylinder", size="small", *, vectorized=False, see
     negative code is an error of the method), a bool (True: the sets meet) or a word
     ("separated", ..., "intersecting", "undecided", "invalid", "error").
 
-    Writes OUT/NAME/ (families.csv, counterexamples.jsonl, answers.jsonl, summary.txt) and
-    returns a JudgeResult. An exception raised by the function ends the run: the cases answered
+    Writes OUT/NAME/ (families.csv, counterexamples.jsonl, answers.jsonl, summary.txt and the
+    one-page report index.html) and returns a JudgeResult. An exception raised by the function ends the run: the cases answered
     before it are written, and the exception propagates (with a note naming the case).
     """
     if query not in JUDGE_QUERIES:

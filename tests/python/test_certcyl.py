@@ -384,6 +384,9 @@ class Judge(unittest.TestCase):
         self.assertTrue(result.summary.startswith("certcyl judge: never, "))
         with open(os.path.join(result.folder, "counterexamples.jsonl")) as f:
             self.assertGreater(len(f.readlines()), 0)
+        # The one-page report opens on the failure count.
+        with open(os.path.join(result.folder, "index.html"), encoding="utf-8") as f:
+            self.assertIn(f"<b>{self.meeting} failure{'' if self.meeting == 1 else 's'}</b>", f.read())
 
     def test_judged_as_the_command_judges_the_same_answers(self):
         # A naive double test (the distance of the line to the axis' line, caps ignored), judged
