@@ -26,6 +26,11 @@ import re
 import sys
 from html.parser import HTMLParser
 
+# The 95% Wilson score interval, from the module the study's scripts share (an implementation
+# independent of the C++ one that wrote the page).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "experiments"))
+from certcyl_results import wilson  # noqa: E402
+
 BLUE = (0x1f, 0x77, 0xb4)
 RED = (0xd6, 0x27, 0x28)
 
@@ -98,16 +103,6 @@ class Page(HTMLParser):
 
 
 RED_HEX = "#%02x%02x%02x" % RED
-
-
-def wilson(failures, n):
-    """The 95% Wilson score interval of failures in n trials."""
-    z = 1.959963984540054
-    p = failures / n
-    denom = 1 + z * z / n
-    centre = (p + z * z / (2 * n)) / denom
-    half = z / denom * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
-    return max(0.0, centre - half), min(1.0, centre + half)
 
 
 def pct(p):
