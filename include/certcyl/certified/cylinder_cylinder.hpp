@@ -975,13 +975,14 @@ class CylinderCylinderSolver {
   }
 
   // Newton's method on the optimality conditions in QD (dd_real) from the world
-  // point X0; its point or its direction checked exactly.
+  // point X0 (first_pieces: one attempt from that active set only; max_steps per attempt); its
+  // point or its direction checked exactly.
   template <class QD>
   Refined refine_in(const Point3<QD>& X0, int epsilon_exponent, int touching_exponent, unsigned first_pieces = 0, int max_steps = 24) {
     Refined r;
     const CylinderPair<QD> d = world_pair<QD>();
     ActiveSetProblem<QD> problem(d, -epsilon_exponent, true);
-    const std::optional<ActiveSetOptimum<QD>> o = problem.solve(X0, first_pieces, first_pieces != 0, max_steps);
+    const std::optional<ActiveSetOptimum<QD>> o = problem.solve(X0, first_pieces, max_steps);
     if (!o) return r;
     result_.counters.newton_steps += static_cast<std::uint32_t>(o->iterations);
     if (!finite_q(o->value) || !finite_q(o->point)) return r;
@@ -1054,7 +1055,7 @@ class CylinderCylinderSolver {
       // when double ends there and the axes are not parallel (parallel caps have no crease: their
       // optimum is where double found it); otherwise the usual start follows.
       if (o && o->pieces == 5u && axes_surely_not_parallel()) {
-        const std::optional<ActiveSetOptimum<double>> v = problem.solve(*optimum_point_, 15u, true, 8);
+        const std::optional<ActiveSetOptimum<double>> v = problem.solve(*optimum_point_, 15u, 8);
         if (v) result_.counters.newton_steps += static_cast<std::uint32_t>(v->iterations);
         if (v && v->pieces == 15u && finite(v->point)) vertex = v->point;
       }

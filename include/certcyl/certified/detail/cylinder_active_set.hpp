@@ -27,10 +27,10 @@
 
 #include <Eigen/Dense>
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <optional>
+#include <type_traits>
 
 #include "certcyl/certified/detail/cylinder_certificates.hpp"
 #include "certcyl/number_traits.hpp"
@@ -86,12 +86,11 @@ class ActiveSetProblem {
     rho_ = fine_ / L2;
   }
 
-  std::optional<ActiveSetOptimum<NT>> solve(const Point3<NT>& X0, unsigned first = 0, bool only_first = false, int max_steps = 24) {
-    max_steps_ = max_steps;
-    // The caps on X0's side, and the starting active set: `first` when given, then the pieces
-    // within 2^-6 of the largest (a piece that is not active gets a negative multiplier and
-    // leaves). When Newton's method fails from there, it starts again from the pieces within 2^-2,
-    // then from all four. only_first: a single attempt from `first`, no correction of its set.
+  std::optional<ActiveSetOptimum<NT>> solve(const Point3<NT>& X0, unsigned first = 0, int max_steps = 24) {
+    // The caps on X0's side, and the starting active set: the pieces within 2^-6 of the largest
+    // (a piece that is not active gets a negative multiplier and leaves). When Newton's method
+    // fails from there, it starts again from the pieces within 2^-2, then from all four.
+    // first: instead, a single attempt from the active set `first`, no correction of its set.
     // max_steps: Newton steps per attempt.
     for (int i = 0; i < 2; ++i) side_[i] = sign_is(dot(X0 - m_[i], *A_[i]), CGAL::NEGATIVE) ? -1 : 1;
     std::array<NT, 4> p = values(X0);
@@ -103,12 +102,12 @@ class ActiveSetProblem {
         if (nt::compare(p[k], near) != CGAL::SMALLER) S |= 1u << k;
       return S;
     };
-    const std::array<unsigned, 4> starts = {first ? first : within(64), within(64), within(4), 15u};
     int iterations = 0;
-    if (first && only_first) return from(X0, top, first, iterations, 1);
+    if (first) return from(X0, top, first, iterations, max_steps, 1);
+    const std::array<unsigned, 3> starts = {within(64), within(4), 15u};
     for (std::size_t start = 0; start < starts.size(); ++start) {
-      if (start > 0 && std::find(starts.begin(), starts.begin() + static_cast<long>(start), starts[start]) != starts.begin() + static_cast<long>(start)) continue;
-      std::optional<ActiveSetOptimum<NT>> o = from(X0, top, starts[start], iterations);
+      if (start > 0 && starts[start] == starts[start - 1]) continue;
+      std::optional<ActiveSetOptimum<NT>> o = from(X0, top, starts[start], iterations, max_steps);
       if (o) return o;
     }
     return std::nullopt;
@@ -121,14 +120,15 @@ class ActiveSetProblem {
   // attempts. The point with the least sigma over the attempts is returned (the checks are
   // exact: any point is a fair candidate), or the point of an attempt that stop_when_decided
   // ended.
-  std::optional<ActiveSetOptimum<NT>> from(const Point3<NT>& X0, const NT& top, unsigned S, int& iterations, int attempts = 4) {
+  std::optional<ActiveSetOptimum<NT>> from(const Point3<NT>& X0, const NT& top, unsigned S, int& iterations, int max_steps,
+                                           int attempts = 4) {
     std::optional<ActiveSetOptimum<NT>> best;
     const NT& tol = fine_;
     unsigned tried = 0;  // bit S: active set S tried
     for (int attempt = 0; attempt < attempts; ++attempt) {
       if (tried >> S & 1u) break;
       tried |= 1u << S;
-      std::optional<Newton> n = newton(X0, top, S);
+      std::optional<Newton> n = newton(X0, top, S, max_steps);
       const bool early = n && n->decided;
       if (!n) break;
       S = n->S;
@@ -209,11 +209,12 @@ class ActiveSetProblem {
     Vec3<NT> D{nt::constant<NT>(0), nt::constant<NT>(0), nt::constant<NT>(0)};
     for (unsigned k = 0; k < 2; ++k)
       if (s.S >> k & 1u) D = D + s.lambda[k] * gradient(k, s.X);
-    const NT two = nt::constant<NT>(2);
-    const NT phi2 = abs_enclosure(dot(D, d_.A0)) + abs_enclosure(dot(D, d_.A1)) +
-                    two * d_.c0.radius * nt::sqrt(NT(squared_norm(cross(D, d_.A0)) / AA_[0])) +
-                    two * d_.c1.radius * nt::sqrt(NT(squared_norm(cross(D, d_.A1)) / AA_[1]));
-    return nt::compare(abs_enclosure(dot(D, d_.T)), NT((one + fine_) * phi2)) == CGAL::LARGER;
+    // separation_terms (cylinder_certificates.hpp): c = |D.T| - |D.A0| - |D.A1|, and the radial
+    // terms of phi2 are sqrt(p) and sqrt(q).
+    const SeparationTerms<NT> t = separation_terms(d_, D);
+    const NT DT = abs_enclosure(dot(D, d_.T));
+    const NT phi2 = DT - t.c + nt::sqrt(t.p) + nt::sqrt(t.q);
+    return nt::compare(DT, NT((one + fine_) * phi2)) == CGAL::LARGER;
   }
 
   // J step = -F by Eigen's partial-pivoting LU on a matrix of the fixed size n (5 to 8): the
@@ -237,9 +238,10 @@ class ActiveSetProblem {
     return step;
   }
 
-  // Newton's method on the system of S from X0; a piece that rises above phi on the way joins S
-  // (with multiplier 0), and a step longer than a quarter of the size is shortened to it.
-  std::optional<Newton> newton(const Point3<NT>& X0, const NT& phi0, unsigned S) const {
+  // Newton's method on the system of S from X0, at most max_steps steps; a piece that rises above
+  // phi on the way joins S (with multiplier 0), and a step longer than a quarter of the size is
+  // shortened to it.
+  std::optional<Newton> newton(const Point3<NT>& X0, const NT& phi0, unsigned S, int max_steps) const {
     using Matrix = Eigen::Matrix<NT, Eigen::Dynamic, Eigen::Dynamic, 0, 8, 8>;
     using Vector = Eigen::Matrix<NT, Eigen::Dynamic, 1, 0, 8, 1>;
     const NT zero = nt::constant<NT>(0);
@@ -252,7 +254,7 @@ class ActiveSetProblem {
     const NT size = nt::sqrt(nt::max(AA_[0], AA_[1]));
     const NT reach = size / nt::constant<NT>(4);
     NT last_phi_step = nt::constant<NT>(1);
-    for (int it = 0; it < max_steps_; ++it) {
+    for (int it = 0; it < max_steps; ++it) {
       std::array<unsigned, 4> index{};
       int m = 0;
       for (unsigned k = 0; k < 4; ++k)
@@ -341,7 +343,6 @@ class ActiveSetProblem {
 
   const CylinderPair<NT>& d_;
   bool stop_when_decided_ = false;
-  int max_steps_ = 24;
   NT epsilon_;
   Point3<NT> m_[2];
   const Vec3<NT>* A_[2];
