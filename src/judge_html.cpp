@@ -51,19 +51,12 @@ std::string fmt(const char* format, double v) {
   return buf;
 }
 
-std::string percent(double p) { return fmt("%.1f%%", 100 * p); }
-
 // The gap as the page states it: one number when the enclosure is tight, else the interval.
 std::string gap_text(const Case& c) {
   if (!std::isfinite(c.gap_lo) || !std::isfinite(c.gap_hi)) return "unbounded (equal midpoints: overlapping)";
   if (c.gap_lo == c.gap_hi || std::fabs(c.gap_hi - c.gap_lo) <= 1e-3 * std::max(std::fabs(c.gap_lo), std::fabs(c.gap_hi)))
     return fmt("%.3g", 0.5 * c.gap_lo + 0.5 * c.gap_hi);
   return "between " + fmt("%.3g", c.gap_lo) + " and " + fmt("%.3g", c.gap_hi);
-}
-
-double gap_size(const Case& c) {
-  if (!std::isfinite(c.gap_lo) || !std::isfinite(c.gap_hi)) return std::numeric_limits<double>::infinity();
-  return std::fabs(0.5 * c.gap_lo + 0.5 * c.gap_hi);
 }
 
 const char* query_title(study::Query q) {

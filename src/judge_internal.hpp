@@ -149,6 +149,12 @@ struct Judgement {
   std::string failure;  // why not every case was judged (empty: all were)
 };
 
+// A proportion as the summary table and the page print it ("12.3%").
+std::string percent(double p);
+
+// Sort key of a counterexample: the size of its gap (the midpoint of the enclosure; unbounded last).
+double gap_size(const Case& c);
+
 // Writes dir/families.csv, dir/counterexamples.jsonl, dir/answers.jsonl (an answers file of
 // the answered cases, in the cases' order: {"id", "answer"} with the answer as judged),
 // dir/summary.txt and dir/index.html (write_report_page), and prints the summary table and

@@ -22,17 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Counts {
-  std::size_t cases = 0;
-  std::map<std::string, std::size_t> outcomes;  // by the study's outcome name
-  std::size_t failures() const { return at("false_positive") + at("false_negative"); }
-  std::size_t certified() const { return cases - at("uncertified"); }
-  std::size_t at(const std::string& o) const {
-    const auto it = outcomes.find(o);
-    return it == outcomes.end() ? 0 : it->second;
-  }
-};
-
 const char* const kOutcomes[] = {"agree",     "false_positive", "false_negative", "class_mismatch",
                                  "undecided", "error",          "invalid",        "uncertified"};
 
@@ -43,12 +32,6 @@ std::pair<double, double> wilson(std::size_t failures, std::size_t n) {
   const double centre = (p + z * z / (2 * nn)) / denom;
   const double half = z / denom * std::sqrt(p * (1 - p) / nn + z * z / (4 * nn * nn));
   return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
-}
-
-std::string percent(double p) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f%%", 100 * p);
-  return buf;
 }
 
 // One CSV field as RFC 4180 writes it: as is, or in double quotes (each quote doubled) when it
@@ -65,13 +48,18 @@ std::string csv_field(const std::string& s) {
   return q + '"';
 }
 
-// Sort key of a counterexample: the size of its gap (the midpoint of the enclosure; unbounded last).
+}  // namespace
+
+std::string percent(double p) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f%%", 100 * p);
+  return buf;
+}
+
 double gap_size(const Case& c) {
   if (!std::isfinite(c.gap_lo) || !std::isfinite(c.gap_hi)) return std::numeric_limits<double>::infinity();
   return std::fabs(0.5 * c.gap_lo + 0.5 * c.gap_hi);
 }
-
-}  // namespace
 
 Answered answered(const std::string& answer) {
   Answered a{answer, {}};
@@ -102,8 +90,8 @@ Answered answered_line(const nlohmann::json& j) {
 void write_results(const fs::path& dir, const fs::path& shown, const std::string& method, const std::vector<Case>& cases,
                    const Answers& answers, std::ostream& out) {
   fs::create_directories(dir);
-  std::map<std::pair<std::string, std::string>, Counts> by_family;  // (query, family)
-  std::map<std::string, Counts> by_query;
+  std::map<std::pair<std::string, std::string>, FamilyJudgement> by_family;  // (query, family)
+  std::map<std::string, FamilyJudgement> by_query;
   std::vector<Counterexample> counterexamples;
   Judgement j;
   j.method = method;
@@ -117,15 +105,18 @@ void write_results(const fs::path& dir, const fs::path& shown, const std::string
     inst.certified = c.certified;
     const std::string outcome = detail::outcome_of(answers.answers[i]->output, inst);
     const std::string query(study::to_string(c.query));
-    for (Counts* n : {&by_family[{query, c.family}], &by_query[query]}) {
+    for (FamilyJudgement* n : {&by_family[{query, c.family}], &by_query[query]}) {
       ++n->cases;
       ++n->outcomes[outcome];
     }
     if (c.certified != Answer::undecided && study::disagrees(study::judge(answers.answers[i]->output, c.certified)))
       counterexamples.push_back({&c, answers.answers[i]->answer, outcome});
   }
-  auto judged_row = [](const std::string& query, const std::string& family, const Counts& n) {
-    FamilyJudgement r{query, family, n.cases, n.certified(), n.failures(), n.outcomes, 0, 0, 0};
+  auto judged_row = [](const std::string& query, const std::string& family, FamilyJudgement r) {
+    r.query = query;
+    r.family = family;
+    r.certified = r.cases - r.at("uncertified");
+    r.failures = r.at("false_positive") + r.at("false_negative");
     if (r.certified > 0) {
       r.rate = static_cast<double>(r.failures) / static_cast<double>(r.certified);
       std::tie(r.lo95, r.hi95) = wilson(r.failures, r.certified);
