@@ -1,6 +1,7 @@
 #!/bin/sh
 # Runs one example of examples/ as a user would, at --size tiny, and checks its report
 # (check_report.py). usage: run_example.sh exec_python|answers_file|plugin_cmake CERTCYL SOURCE_DIR WORK_DIR
+#                           run_example.sh plugin_fcl CERTCYL SOURCE_DIR WORK_DIR PLUGIN_FCL_SO
 set -eu
 example=$1 certcyl=$2 src=$3 work=$4
 python=${PYTHON:-/usr/bin/python3}
@@ -40,6 +41,18 @@ PY
     "$cmake" --build build > build.txt
     "$certcyl" judge --plugin build/my_plugin.so --size tiny > out.txt
     "$python" "$here/check_report.py" "$certcyl" results/judge my_plugin
+    ;;
+  plugin_fcl)
+    # FCL as a plugin, built with the project: judged under the name it gives itself, the report
+    # checked, then against the certified cases (check_plugin_fcl.py).
+    plugin=$5
+    name=$("$python" -c 'import ctypes, sys
+f = ctypes.CDLL(sys.argv[1]).certcyl_plugin_name
+f.restype = ctypes.c_char_p
+print(f().decode())' "$plugin")
+    "$certcyl" judge --plugin "$plugin" --size tiny --out results > out.txt
+    "$python" "$here/check_report.py" "$certcyl" results/judge "$name"
+    "$python" "$here/check_plugin_fcl.py" "$certcyl" results/judge "$plugin" tiny
     ;;
   *)
     echo "unknown example $example"
