@@ -1,6 +1,7 @@
 // Line, ray and segment against circular and elliptic cylinders.
 //
-// Methods: certified (exact endpoints a + b sqrt(c), correctly rounded doubles), shene and
+// Methods: certified (exact endpoints a + b sqrt(c), correctly rounded doubles, and the certified
+// signed gap: the depth margin of study/gap.hpp), shene and
 // gullotti (the seeds' methods, generic: --nt), shene_as_written (the text's "r < |d|"
 // unchanged), gullotti_as_written (the seed's tangency rule unchanged), robust_double
 // (cancellation-free discriminant, stable roots, FMA).
@@ -34,6 +35,28 @@ ojson certified_json(const CertifiedLineResult& r) {
   out["certificate"] = ojson{{"endpoints", "exact roots of the wall quadratic and cap-plane parameters"},
                              {"decided_by", stage}};
   return out;
+}
+
+// The certified signed gap of a line, ray or segment (study/gap.hpp: the depth margin over the
+// allowed range of t; a segment as the line p0 + t (p1 - p0), t in [0, 1]).
+template <class Solid>
+Rational depth_margin(const Line<Rational>& l, const Solid& s, LineRange range) {
+  if constexpr (std::is_same_v<Solid, Cylinder<Rational>>)
+    return study::detail::circular_line_gap(l, s, range);
+  else
+    return study::detail::elliptic_line_gap(l, s, range);
+}
+template <class Solid>
+Rational line_gap(const Line<Rational>& l, const Solid& s) {
+  return depth_margin(l, s, LineRange::line);
+}
+template <class Solid>
+Rational line_gap(const Ray<Rational>& r, const Solid& s) {
+  return depth_margin(Line<Rational>{r.origin, r.direction}, s, LineRange::ray);
+}
+template <class Solid>
+Rational line_gap(const Segment<Rational>& g, const Solid& s) {
+  return depth_margin(Line<Rational>{g.p0, g.direction()}, s, LineRange::segment);
 }
 
 // The interval of a floating or generic method: the computed endpoints with an enclosure of
@@ -84,7 +107,7 @@ constexpr bool has_sqrt_field = NumberTraits<NT>::has_sqrt && NumberTraits<NT>::
 template <class LineLike, class Solid>
 ojson answer_line_query(const LineLike& x, const Solid& solid, bool all_binary64, const QueryOptions& options) {
   const std::string& m = options.method;
-  if (m == "certified") return certified_json(certified_line_cylinder(x, solid));
+  if (m == "certified") return with_gap(certified_json(certified_line_cylinder(x, solid)), gap_json(line_gap(x, solid)));
   if (m == "robust_double") {
     const LineInterval<double> r = robust_line_cylinder(convert<double>(x), convert<double>(solid));
     ojson out = answer_json(r.answer, false, m, "double");

@@ -1,7 +1,8 @@
 // Point against cylinder queries: point_cylinder, point_elliptic_cylinder.
 //
 // The answer maps the point's position to the three values: outside -> separated,
-// on the boundary -> touching, interior -> overlapping.
+// on the boundary -> touching, interior -> overlapping. The certified method also reports the
+// certified signed gap, the point's depth min(1 - q, s, 1 - s) (study/gap.hpp).
 #include "certcyl/io/json_input.hpp"
 #include "certcyl/predicates/point_in_cylinder.hpp"
 #include "query.hpp"
@@ -12,6 +13,12 @@ namespace {
 
 Answer answer_of(Side s) {
   return s == Side::inside ? Answer::overlapping : (s == Side::boundary ? Answer::touching : Answer::separated);
+}
+
+// The certified signed gap: the depth of the point (study/gap.hpp).
+Rational point_gap(const Point3<Rational>& x, const Cylinder<Rational>& c) { return study::detail::circular_point_gap(x, c); }
+Rational point_gap(const Point3<Rational>& x, const EllipticCylinder<Rational>& e) {
+  return study::detail::elliptic_point_gap(x, e);
 }
 
 template <class Solid>
@@ -25,7 +32,7 @@ ojson point_query(const json& input, const QueryOptions& options, const char* so
     const Side s = filtered_call([&]<class NT>() { return classify_point(convert<NT>(x), convert<NT>(solid)); }, counter);
     ojson out = answer_json(answer_of(s), true, options.method, counter.exact ? "exact" : "interval");
     out["certificate"] = ojson{{"position", to_string(s)}, {"point", exact_json(x)}};
-    return out;
+    return with_gap(out, gap_json(point_gap(x, solid)));
   }
   // "polynomial": the same predicate in the number type of --nt, certified only if that type is.
   return run_in_number_type(options, reader.all_binary64(), true, [&]<class NT>() {

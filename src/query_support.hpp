@@ -1,9 +1,10 @@
-// Shared pieces of the query handlers: exact values as JSON, the common answer fields, and
-// running a generic method in the number type of --nt.
+// Shared pieces of the query handlers: exact values as JSON, the common answer fields, the
+// certified signed gap, and running a generic method in the number type of --nt.
 #pragma once
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <string>
 
 #include "certcyl/answer.hpp"
@@ -12,6 +13,7 @@
 #include "certcyl/rational.hpp"
 #include "certcyl/vec3.hpp"
 #include "query.hpp"
+#include "study/gap.hpp"
 
 namespace certcyl::cli {
 
@@ -22,6 +24,30 @@ inline ojson exact_json(const Vec3<Rational>& v) { return ojson::array({exact_js
 // The fields every answer carries.
 inline ojson answer_json(Answer a, bool certified, const std::string& method, const std::string& nt) {
   return ojson{{"answer", std::string(to_string(a))}, {"certified", certified}, {"method", method}, {"nt", nt}};
+}
+
+// The certified signed gap (study/gap.hpp) of a query other than a cylinder pair: the enclosure
+// [lo, hi] in doubles of the exact rational, as `certcyl cases` writes it in meta.gap; null when
+// the exact value lies beyond the finite doubles (JSON has no infinity).
+inline ojson gap_json(const Rational& gap) {
+  const auto [lo, hi] = study::detail::enclose_rational(gap);
+  if (!std::isfinite(lo) || !std::isfinite(hi)) return nullptr;
+  return ojson::array({lo, hi});
+}
+
+// `answer` with "gap" placed where the cylinder pair has it: after the common fields (answer,
+// certified, method, nt) and the pair's stage, before the query's own.
+inline ojson with_gap(const ojson& answer, const ojson& gap) {
+  ojson out = ojson::object();
+  bool placed = false;
+  for (auto it = answer.begin(); it != answer.end(); ++it) {
+    const std::string& key = it.key();
+    const bool common = key == "answer" || key == "certified" || key == "method" || key == "nt" || key == "stage";
+    if (!common && !placed) out["gap"] = gap, placed = true;
+    out[key] = it.value();
+  }
+  if (!placed) out["gap"] = gap;
+  return out;
 }
 
 // Runs body.template operator()<NT>() -> Answer in the number type of --nt. The answer is

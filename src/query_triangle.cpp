@@ -1,5 +1,6 @@
-// Triangle against cylinder. Methods: certified (exact three-valued predicate with certificate),
-// eberly (the seed's clip method, generic: --nt).
+// Triangle against cylinder. Methods: certified (exact three-valued predicate with certificate;
+// the query, not `certcyl scene`, adds the certified signed gap, the depth margin of
+// study/gap.hpp), eberly (the seed's clip method, generic: --nt).
 #include "certcyl/certified/triangle_cylinder.hpp"
 #include "certcyl/io/json_input.hpp"
 #include "certcyl/seeds/eberly_triangle_cylinder.hpp"
@@ -40,7 +41,10 @@ ojson answer_triangle(const json& in, const QueryOptions& o) {
   JsonReader reader;
   const Triangle<Rational> t = reader.triangle(JsonReader::member(in, "", "triangle"), "triangle");
   const Cylinder<Rational> c = reader.cylinder(JsonReader::member(in, "", "cylinder"), "cylinder");
-  if (o.method == "certified") return triangle_cylinder_json(certified_triangle_cylinder(t, c));
+  if (o.method == "certified") {
+    const TriangleCylinderResult r = certified_triangle_cylinder(t, c);
+    return with_gap(triangle_cylinder_json(r), gap_json(study::detail::triangle_gap(t, c, r)));
+  }
   std::string label;
   ojson out = run_in_number_type(o, reader.all_binary64(), false, [&]<class NT>() -> Answer {
     if constexpr (!(NumberTraits<NT>::has_sqrt && NumberTraits<NT>::is_field)) {

@@ -158,12 +158,13 @@ BOOST_AUTO_TEST_CASE(brief_answers) {
   QueryOptions o;
   o.brief = true;
   // The line x = 1/2 + t, y = 0, z = 1 crosses the wall of the unit cylinder at x = -1 and x = 1:
-  // t in [-3/2, 1/2], both exact doubles.
+  // t in [-3/2, 1/2], both exact doubles. Its gap (the depth margin, src/study/gap.hpp): s = 1/2
+  // (z = 1 of a height 2), so max s = max (1 - s) = 1/2, and the line crosses the axis: 1/2.
   const Run line = run(R"({"id": "l", "query": "line_cylinder", "line": {"origin": [0.5, 0, 1], "direction": [1, 0, 0]}, )"
                        R"("cylinder": {"p0": [0,0,0], "p1": [0,0,2], "radius": 1}, "meta": {"k": 1}})"
                        "\n",
                        o);
-  BOOST_TEST(line.lines.at(0) == json::parse(R"({"id": "l", "meta": {"k": 1}, "answer": "overlapping", "interval": [-1.5, 0.5]})"));
+  BOOST_TEST(line.lines.at(0) == json::parse(R"({"id": "l", "meta": {"k": 1}, "answer": "overlapping", "interval": [-1.5, 0.5], "gap": [0.5, 0.5]})"));
   // Two unit cylinders with parallel axes 3 apart: separated; the gap is an enclosure of log(phi*) < 0.
   const Run pair = run(R"({"id": 2, "query": "cylinder_cylinder", "a": {"p0": [0,0,0], "p1": [0,0,1], "radius": 1}, )"
                        R"("b": {"p0": [3,0,0], "p1": [3,0,1], "radius": 1}})"

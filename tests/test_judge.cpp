@@ -580,5 +580,6 @@ BOOST_AUTO_TEST_CASE(query_answers_a_coprocess_line_by_line) {
       R"({"id":1,"query":"point_cylinder","point":[0,0,1],"cylinder":{"p0":[0,0,0],"p1":[0,0,2],"radius":1}})";
   const Run r = s.run("{ echo '" + line + "'; sleep 6; } | timeout 2 " + kCertcyl + " query --line-buffered --brief");
   BOOST_TEST(r.status == 124);  // ended by timeout, the input still open
-  BOOST_TEST(r.out == "{\"id\":1,\"answer\":\"overlapping\"}\n");
+  // The gap, the point's depth min(1 - q, s, 1 - s): q = 0 on the axis, s = 1/2 at half height.
+  BOOST_TEST(r.out == "{\"id\":1,\"answer\":\"overlapping\",\"gap\":[0.5,0.5]}\n");
 }

@@ -21,6 +21,11 @@
 // point (the minimiser of a quadratic on an interval with rational ends, or the triangle's
 // point nearest the axis, from the certified query's exact construction), computed in Gmpq and enclosed in doubles.
 //
+// Point (circular or elliptic cylinder): the depth of the one point,
+//   gap = d(X) = min( 1 - q(X), s(X), 1 - s(X) ),
+// the margin above for the set {X} (its clamp to 1 never binds: min(s, 1 - s) <= 1/2). It is
+// > 0 iff X is in the open solid, = 0 iff on the boundary, < 0 iff outside; exact, in Gmpq.
+//
 // Cylinder against cylinder: log(phi*), the certified enclosure of certified_cylinder_cylinder
 // (design note section 4; 1/phi* is the growth distance). Equal midpoints: +infinity.
 //
@@ -124,13 +129,41 @@ Rational circular_line_gap(const LineLike& l, const Cylinder<Rational>& c, LineR
   return line_depth(dot(v, v) / R, 2 * dot(u, v) / R, dot(u, u) / R, dot(w, A) / AA, dot(d, A) / AA, range);
 }
 
-inline Rational elliptic_line_gap(const Line<Rational>& l, const EllipticCylinder<Rational>& e) {
-  // Unit space: y = M^-1 (X - base), M = [a b c]; M^-1 rows are the cross products over det.
-  const Rational det = determinant(e.a, e.b, e.c);
-  const Vec3<Rational> r0 = cross(e.b, e.c), r1 = cross(e.c, e.a), r2 = cross(e.a, e.b);
-  auto to_unit = [&](const Vec3<Rational>& v) { return Vec3<Rational>{dot(r0, v) / det, dot(r1, v) / det, dot(r2, v) / det}; };
-  const Vec3<Rational> w = to_unit(l.origin - e.base), v = to_unit(l.direction);
-  return line_depth(v.x * v.x + v.y * v.y, 2 * (w.x * v.x + w.y * v.y), w.x * w.x + w.y * w.y, w.z, v.z, LineRange::line);
+// The unit frame of an elliptic cylinder: y = M^-1 v, M = [a b c] (M^-1's rows are the cross
+// products over det); a point X maps to y(X - base).
+struct EllipticFrame {
+  explicit EllipticFrame(const EllipticCylinder<Rational>& e)
+      : base(e.base), det(determinant(e.a, e.b, e.c)), r0(cross(e.b, e.c)), r1(cross(e.c, e.a)), r2(cross(e.a, e.b)) {}
+  Vec3<Rational> operator()(const Vec3<Rational>& v) const { return {dot(r0, v) / det, dot(r1, v) / det, dot(r2, v) / det}; }
+  Vec3<Rational> base;
+  Rational det;
+  Vec3<Rational> r0, r1, r2;
+};
+
+// LineLike: a line or ray (origin, direction) or a segment as Line{p0, p1 - p0} with its range.
+template <class LineLike>
+Rational elliptic_line_gap(const LineLike& l, const EllipticCylinder<Rational>& e, LineRange range) {
+  const EllipticFrame unit(e);
+  const Vec3<Rational> w = unit(l.origin - unit.base), v = unit(l.direction);
+  return line_depth(v.x * v.x + v.y * v.y, 2 * (w.x * v.x + w.y * v.y), w.x * w.x + w.y * w.y, w.z, v.z, range);
+}
+
+// The depth of one point from its squared radial coordinate q and axial coordinate s.
+inline Rational point_depth(const Rational& q, const Rational& s) {
+  const Rational one = 1;
+  return std::min({one - q, s, one - s});
+}
+
+inline Rational circular_point_gap(const Point3<Rational>& X, const Cylinder<Rational>& c) {
+  const Vec3<Rational> A = c.axis(), w = X - c.p0, u = cross(w, A);
+  const Rational AA = squared_length(A);
+  return point_depth(dot(u, u) / (c.radius * c.radius * AA), dot(w, A) / AA);
+}
+
+inline Rational elliptic_point_gap(const Point3<Rational>& X, const EllipticCylinder<Rational>& e) {
+  const EllipticFrame unit(e);
+  const Vec3<Rational> y = unit(X - unit.base);
+  return point_depth(y.x * y.x + y.y * y.y, y.z);
 }
 
 inline Rational triangle_gap(const Triangle<Rational>& T, const Cylinder<Rational>& c, const TriangleCylinderResult& r) {
@@ -197,7 +230,8 @@ inline void certify(Instance& inst, const CylinderCylinderOptions& cyl_options =
       return;
     }
     case Query::line_elliptic_cylinder:
-      finish_line(certified_line_cylinder(line_at(x), elliptic_at(x, 6)), elliptic_line_gap(line_at(q), elliptic_at(q, 6)));
+      finish_line(certified_line_cylinder(line_at(x), elliptic_at(x, 6)),
+                  elliptic_line_gap(line_at(q), elliptic_at(q, 6), LineRange::line));
       return;
     case Query::triangle_cylinder: {
       const Triangle<Rational> T = triangle_at(q);

@@ -1,0 +1,249 @@
+// `certcyl query`'s "gap", the certified signed gap, for every query kind: hand-derived values
+// of the depth margin (src/study/gap.hpp) worked out in comments, and, over the study's tiny
+// cases of every query, the gap's sign against the certified answer and the gap of `certcyl
+// cases` on the same line.
+#define BOOST_TEST_MODULE cli_query_gap
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <sstream>
+
+#include "cases.hpp"
+#include "certcyl/rational.hpp"
+#include "query.hpp"
+#include "study/instance.hpp"
+
+using namespace certcyl;
+using namespace certcyl::cli;
+
+namespace {
+
+std::vector<json> run(const std::string& input, const std::string& method = "certified") {
+  QueryOptions o;
+  o.method = method;
+  std::istringstream in(input);
+  std::ostringstream out;
+  BOOST_TEST_REQUIRE(run_query(in, out, o, 1) == 0);
+  std::vector<json> lines;
+  std::istringstream produced(out.str());
+  for (std::string line; std::getline(produced, line);) lines.push_back(json::parse(line));
+  return lines;
+}
+
+json answer_of(const std::string& line, const std::string& method = "certified") {
+  const std::vector<json> r = run(line + "\n", method);
+  BOOST_TEST_REQUIRE(r.size() == 1u);
+  BOOST_TEST_REQUIRE(!r[0].contains("error"), r[0].dump());
+  return r[0];
+}
+
+// The radius-1 cylinder from (0,0,0) to (0,0,1): s(X) = z, q(X) = x^2 + y^2.
+const std::string unit = R"("cylinder": {"p0": [0,0,0], "p1": [0,0,1], "radius": 1})";
+// The elliptic cylinder base 0, a = (2,0,0), b = (0,1,0), c = (0,0,1): unit coordinates
+// (x/2, y, z), so s = z and q = x^2/4 + y^2.
+const std::string ellipse = R"("elliptic_cylinder": {"base": [0,0,0], "a": [2,0,0], "b": [0,1,0], "c": [0,0,1]})";
+
+std::string line_query(const std::string& query, const std::string& operand, const std::string& solid) {
+  return R"({"query": ")" + query + R"(", )" + operand + ", " + solid + "}";
+}
+
+// Asserts that the answer's gap is [v, v] (v a double) and its answer the one given.
+void check_exact_gap(const json& a, double v, const std::string& answer) {
+  BOOST_TEST(a["answer"] == answer, a.dump());
+  BOOST_TEST_REQUIRE(a["gap"].is_array(), a.dump());
+  BOOST_TEST(a["gap"][0].get<double>() == v, a.dump());
+  BOOST_TEST(a["gap"][1].get<double>() == v, a.dump());
+}
+
+// Asserts that the gap encloses the rational num/den (not a double) between adjacent doubles.
+void check_enclosed_gap(const json& a, int num, int den, const std::string& answer) {
+  BOOST_TEST(a["answer"] == answer, a.dump());
+  BOOST_TEST_REQUIRE(a["gap"].is_array(), a.dump());
+  const double lo = a["gap"][0].get<double>(), hi = a["gap"][1].get<double>();
+  const Rational exact(num, den);
+  BOOST_TEST((Rational(lo) < exact && exact < Rational(hi)), a.dump());
+  BOOST_TEST(hi == std::nextafter(lo, 2.0), a.dump());
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(lines_worked_out_by_hand) {
+  // gap = min(m_tube, m_cap0, m_cap1, 1); s(t) and q(t) along X = origin + t direction.
+  // Through (0,0,1/2) along x: s = 1/2, so m_cap0 = max s = 1/2 and m_cap1 = max(1 - s) = 1/2;
+  // q = t^2, min 0: m_tube = 1. gap = 1/2.
+  check_exact_gap(answer_of(line_query("line_cylinder", R"("line": {"origin": [0,0,0.5], "direction": [1,0,0]})", unit)),
+                  0.5, "overlapping");
+  // Through (2,0,1/2) along y, 2 from the axis: q = 4 + t^2, m_tube = 1 - 4 = -3 < 0; the
+  // sample points are t = 0 (the nearest to the axis): d = min(1 - 4, 1/2, 1/2) = -3.
+  check_exact_gap(answer_of(line_query("line_cylinder", R"("line": {"origin": [2,0,0.5], "direction": [0,1,0]})", unit)),
+                  -3.0, "separated");
+  // Tangent: through (1,0,1/2) along y, q = 1 + t^2, m_tube = 0. gap = 0.
+  check_exact_gap(answer_of(line_query("line_cylinder", R"("line": {"origin": [1,0,0.5], "direction": [0,1,0]})", unit)),
+                  0.0, "touching");
+  // Parallel to the axis at x = 1/2: s = t unbounded both ways, so m_cap0 = m_cap1 = 1 (clamped);
+  // within the slab (t in [0, 1]) q = 1/4: m_tube = 3/4. gap = 3/4.
+  check_exact_gap(answer_of(line_query("line_cylinder", R"("line": {"origin": [0.5,0,0], "direction": [0,0,1]})", unit)),
+                  0.75, "overlapping");
+  // A third of the height: through (0,0,"1/3") along x, s = 1/3: m_cap0 = 1/3, m_cap1 = 2/3,
+  // m_tube = 1. gap = 1/3, not a double: enclosed by adjacent doubles.
+  check_enclosed_gap(answer_of(line_query("line_cylinder", R"("line": {"origin": [0,0,"1/3"], "direction": [1,0,0]})", unit)),
+                     1, 3, "overlapping");
+}
+
+BOOST_AUTO_TEST_CASE(rays_and_segments_are_clipped_to_their_range) {
+  // The ray from (2,0,1/2) along +x: t >= 0, q = (2 + t)^2 >= 4 (its line through the axis
+  // would have gap 1/2): m_tube = 1 - 4 = -3, and the sample points all clamp to t = 0,
+  // d = min(-3, 1/2, 1/2) = -3.
+  check_exact_gap(answer_of(line_query("ray_cylinder", R"("ray": {"origin": [2,0,0.5], "direction": [1,0,0]})", unit)),
+                  -3.0, "separated");
+  // The ray up the axis from z = 3/4: s = 3/4 + t, t >= 0: m_cap0 = 1 (unbounded, clamped),
+  // m_cap1 = max(1 - s) = 1/4 at t = 0; q = 0: m_tube = 1. gap = 1/4 (the line's is 1).
+  check_exact_gap(answer_of(line_query("ray_cylinder", R"("ray": {"origin": [0,0,0.75], "direction": [0,0,1]})", unit)),
+                  0.25, "overlapping");
+  check_exact_gap(answer_of(line_query("line_cylinder", R"("line": {"origin": [0,0,0.75], "direction": [0,0,1]})", unit)),
+                  1.0, "overlapping");
+  // The segment on the axis from z = 1/4 to z = 1/2: s = 1/4 + t/4, t in [0, 1]: m_cap0 = 1/2,
+  // m_cap1 = 3/4, m_tube = 1. gap = 1/2.
+  check_exact_gap(answer_of(line_query("segment_cylinder", R"("segment": {"p0": [0,0,0.25], "p1": [0,0,0.5]})", unit)),
+                  0.5, "overlapping");
+  // The segment from z = 2 to z = 3 on the axis: m_cap1 = max(1 - s) = 1 - 2 = -1 < 0; every
+  // sample point clamps to t = 0: d = min(1 - 0, 2, 1 - 2) = -1.
+  check_exact_gap(answer_of(line_query("segment_cylinder", R"("segment": {"p0": [0,0,2], "p1": [0,0,3]})", unit)),
+                  -1.0, "separated");
+  // Segments along x at z = 1/2 (s = 1/2, so m_cap0 = m_cap1 = 1/2). From (0,0,1/2) to
+  // (1,0,1/2): q = t^2, min 0: gap 1/2. From (1,0,1/2) to (3,0,1/2): q = (1 + 2t)^2, its
+  // minimum over t in [0, 1] is 1 at t = 0: m_tube = 0, touching at p0.
+  check_exact_gap(answer_of(line_query("segment_cylinder", R"("segment": {"p0": [0,0,0.5], "p1": [1,0,0.5]})", unit)),
+                  0.5, "overlapping");
+  check_exact_gap(answer_of(line_query("segment_cylinder", R"("segment": {"p0": [1,0,0.5], "p1": [3,0,0.5]})", unit)),
+                  0.0, "touching");
+}
+
+BOOST_AUTO_TEST_CASE(elliptic_lines_rays_and_segments) {
+  // In unit coordinates (x/2, y, z). The line through (0,1,1/2) along x: q = t^2/4 + 1, min 1:
+  // m_tube = 0, tangent. gap = 0.
+  check_exact_gap(
+      answer_of(line_query("line_elliptic_cylinder", R"("line": {"origin": [0,1,0.5], "direction": [1,0,0]})", ellipse)), 0.0,
+      "touching");
+  // The line through (1,0,1/2) along x: q = (1 + t)^2/4, min 0: m_tube = 1; s = 1/2. gap = 1/2.
+  check_exact_gap(
+      answer_of(line_query("line_elliptic_cylinder", R"("line": {"origin": [1,0,0.5], "direction": [1,0,0]})", ellipse)), 0.5,
+      "overlapping");
+  // The segment from (3,0,1/2) to (5,0,1/2): q = (3/2 + t)^2, t in [0, 1], min 9/4: m_tube = -5/4;
+  // the sample points clamp to t = 0: d = min(1 - 9/4, 1/2, 1/2) = -5/4 (its line's gap is 1/2).
+  check_exact_gap(
+      answer_of(line_query("segment_elliptic_cylinder", R"("segment": {"p0": [3,0,0.5], "p1": [5,0,0.5]})", ellipse)), -1.25,
+      "separated");
+  // The ray up the axis from z = 3/4, direction (0,0,2): s = 3/4 + 2t, t >= 0: m_cap1 = 1/4.
+  check_exact_gap(
+      answer_of(line_query("ray_elliptic_cylinder", R"("ray": {"origin": [0,0,0.75], "direction": [0,0,2]})", ellipse)), 0.25,
+      "overlapping");
+}
+
+BOOST_AUTO_TEST_CASE(triangles_worked_out_by_hand) {
+  // gap = min(1, max s, 1 - min s) and, when that is >= 0, 1 - q at the point of the triangle
+  // in the slab nearest the axis.
+  // Vertices (3/4,0,1/4), (3/4,1/2,3/4), (1,0,3/4): s in [1/4, 3/4], so min(1, 3/4, 3/4) = 3/4;
+  // x >= 3/4 and y >= 0 on the triangle, so the nearest point is (3/4,0,1/4), q = 9/16:
+  // m_tube = 7/16. gap = 7/16.
+  check_exact_gap(answer_of(R"({"query": "triangle_cylinder", "triangle": [[0.75,0,0.25],[0.75,0.5,0.75],[1,0,0.75]], )" +
+                            unit + "}"),
+                  0.4375, "overlapping");
+  // The same with x from 0.6 (vertices (0.6,0,0.2), (0.6,0.5,0.7), (0.8,0,0.7), read exactly):
+  // min(1, 0.7, 0.8) = 0.7, nearest point (0.6,0,0.2), q = 9/25: m_tube = 16/25. gap = 16/25.
+  check_enclosed_gap(answer_of(R"({"query": "triangle_cylinder", "triangle": [["0.6",0,"0.2"],["0.6","0.5","0.7"],["0.8",0,"0.7"]], )" +
+                               unit + "}"),
+                     16, 25, "overlapping");
+  // Lifted to z in [2, 3]: 1 - min s = -1. gap = -1.
+  check_exact_gap(answer_of(R"({"query": "triangle_cylinder", "triangle": [[0,0,2],[1,0,3],[0,1,3]], )" + unit + "}"), -1.0,
+                  "separated");
+  // In the cap plane z = 1: max s = 1, 1 - min s = 0. gap = 0.
+  check_exact_gap(
+      answer_of(R"({"query": "triangle_cylinder", "triangle": [[-0.5,0,1],[0.5,0,1],[0,0.5,1]], )" + unit + "}"), 0.0,
+      "touching");
+}
+
+BOOST_AUTO_TEST_CASE(points_worked_out_by_hand) {
+  // gap = min(1 - q, s, 1 - s) at the point.
+  auto point = [&](const std::string& p) { return answer_of(R"({"query": "point_cylinder", "point": )" + p + ", " + unit + "}"); };
+  check_exact_gap(point("[0.5,0,0.25]"), 0.25, "overlapping");  // min(3/4, 1/4, 3/4)
+  check_exact_gap(point("[3,4,0.5]"), -24.0, "separated");      // q = 25: min(-24, 1/2, 1/2)
+  check_exact_gap(point("[0,0,1.5]"), -0.5, "separated");       // above the top: min(1, 3/2, -1/2)
+  check_exact_gap(point(R"(["0.6","0.8",0.5])"), 0.0, "touching");  // q = 9/25 + 16/25 = 1
+  check_enclosed_gap(point(R"([0,0,"0.1"])"), 1, 10, "overlapping");  // min(1, 1/10, 9/10)
+  // Elliptic, unit coordinates (x/2, y, z): (1,0,1/2) has q = 1/4: min(3/4, 1/2, 1/2) = 1/2;
+  // (2,0,1/2) is on the wall.
+  auto elliptic = [&](const std::string& p) {
+    return answer_of(R"({"query": "point_elliptic_cylinder", "point": )" + p + ", " + ellipse + "}");
+  };
+  check_exact_gap(elliptic("[1,0,0.5]"), 0.5, "overlapping");
+  check_exact_gap(elliptic("[2,0,0.5]"), 0.0, "touching");
+  check_exact_gap(elliptic("[0,0,-2]"), -2.0, "separated");  // min(1, -2, 3)
+  // 10^200 radii from the axis: gap = 1 - 10^400, beyond the doubles: null, the answer stands.
+  const json far = point("[1e200,0,0.5]");
+  BOOST_TEST(far["answer"] == "separated");
+  BOOST_TEST_REQUIRE(far.contains("gap"));
+  BOOST_TEST(far["gap"].is_null());
+}
+
+BOOST_AUTO_TEST_CASE(gap_follows_the_common_fields_as_for_pairs) {
+  // The member order of an answer: answer, certified, method, nt, gap, then the query's own.
+  QueryOptions o;
+  std::istringstream in(line_query("line_cylinder", R"("line": {"origin": [0,0,0.5], "direction": [1,0,0]})", unit) + "\n" +
+                        R"({"query": "point_cylinder", "point": [0,0,0.5], )" + unit + "}\n");
+  std::ostringstream out;
+  BOOST_TEST_REQUIRE(run_query(in, out, o, 1) == 0);
+  std::istringstream produced(out.str());
+  std::string line;
+  std::getline(produced, line);
+  BOOST_TEST(line.find(R"("nt":"exact","gap":[0.5,0.5],"interval":)") != std::string::npos, line);
+  std::getline(produced, line);
+  BOOST_TEST(line.find(R"("nt":"interval","gap":[0.5,0.5],"certificate":)") != std::string::npos, line);
+}
+
+BOOST_AUTO_TEST_CASE(other_methods_report_no_gap) {
+  const std::string l = line_query("line_cylinder", R"("line": {"origin": [0,0,0.5], "direction": [1,0,0]})", unit);
+  for (const char* m : {"robust_double", "shene", "gullotti"}) BOOST_TEST(!answer_of(l, m).contains("gap"), m);
+  BOOST_TEST(!answer_of(R"({"query": "point_cylinder", "point": [0,0,0.5], )" + unit + "}", "polynomial").contains("gap"));
+  BOOST_TEST(!answer_of(R"({"query": "triangle_cylinder", "triangle": [[0,0,2],[1,0,3],[0,1,3]], )" + unit + "}", "eberly")
+                  .contains("gap"));
+}
+
+BOOST_AUTO_TEST_CASE(the_gap_of_every_tiny_case_has_the_answers_sign_and_is_that_of_cases) {
+  for (const study::Query q : study::kQueries) {
+    CaseSpec spec;
+    spec.query = std::string(study::to_string(q));
+    spec.size = "tiny";
+    std::ostringstream cases;
+    BOOST_TEST_REQUIRE(run_cases(spec, cases) == 0);
+    const std::vector<json> answers = run(cases.str());
+    std::istringstream in(cases.str());
+    std::size_t i = 0, signed_gaps = 0;
+    for (std::string text; std::getline(in, text); ++i) {
+      BOOST_TEST_REQUIRE(i < answers.size());
+      const json c = json::parse(text), &a = answers[i];
+      const std::string where = c["id"].get<std::string>();
+      BOOST_TEST(a["answer"] == c["meta"]["certified"], where);
+      BOOST_TEST_REQUIRE(a.contains("gap"), where);
+      BOOST_TEST(a["gap"] == c["meta"]["gap"], where);
+      if (a["gap"].is_null()) continue;
+      ++signed_gaps;
+      const double lo = a["gap"][0].get<double>(), hi = a["gap"][1].get<double>();
+      BOOST_TEST(lo <= hi, where);
+      const std::string answer = a["answer"];
+      if (q == study::Query::cylinder_cylinder) {
+        // log(phi*) is an enclosure that allows the answer's sign (as study::certify checks).
+        if (answer == "separated") BOOST_TEST(lo < 0, where);
+        else if (answer == "overlapping") BOOST_TEST(hi > 0, where);
+        else BOOST_TEST((answer == "touching" && lo <= 0 && 0 <= hi), where);
+      } else {
+        // A depth margin is an exact rational: its enclosure has its sign.
+        if (answer == "separated") BOOST_TEST(hi < 0, where);
+        else if (answer == "overlapping") BOOST_TEST(lo > 0, where);
+        else BOOST_TEST((answer == "touching" && lo == 0 && hi == 0), where);
+      }
+    }
+    BOOST_TEST(i == answers.size());
+    BOOST_TEST(signed_gaps > 10u, spec.query);
+  }
+}
