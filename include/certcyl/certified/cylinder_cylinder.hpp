@@ -67,7 +67,8 @@
 //                    cylinder's rim wedge in the plane through its axis and the other, and the
 //                    other's deepest point in it, on quantities reduced exactly to the smaller
 //                    cylinder's scale: they decide a huge against a tiny cylinder without
-//                    precision to match their span), then the optimiser at
+//                    precision to match their span; for input spanning over 256 binades they
+//                    run before the touching stage, with short ellipsoid runs), then the optimiser at
 //                    doubling precisions up to options.max_precision (by default set from the
 //                    input's span in bits); its direction
 //                    and point, converted exactly to rationals, are checked in Gmpq, and its
@@ -1280,14 +1281,20 @@ class CylinderCylinderSolver {
   // wedge; then again in the plane through j's support point there (near the contact, where the
   // plane's only error, the curvature of i's rim over j's distance from the plane, is smallest).
   // The quantities are reduced exactly to the contact's scale; the precision starts at 192 bits
-  // and rises to what the gain found needs against its terms (at most 1,024 bits; the search
-  // takes 1.5 golden-section steps a bit). They decide pairs of a huge and a tiny cylinder
-  // (2^900 against 2^-900) and needles against pancakes whose separating directions or common
-  // interior are far too narrow for the rounded optimiser below thousands of bits. Each
-  // candidate is checked exactly.
+  // and rises to what the gain found needs against its terms (at most 4,096 bits; the best
+  // direction is found in closed form, a few evaluations at any precision). The next plane goes
+  // through the witness found, else through the support point: up to six planes, more while each
+  // gives a witness (the planes through witnesses on a face of j's support converge, as Newton's
+  // method on i's rim circle, to where that face crosses the rim, and the wedge's curvature error
+  // with them). They decide pairs of a huge and a tiny cylinder (2^900 against 2^-900), needles
+  // against pancakes, and slivers at a rim or a cap (common interiors 2^-800 thin), whose
+  // separating directions or common interior are far too narrow for the rounded optimiser below
+  // thousands of bits. Each candidate is checked exactly. Tried once per query.
   bool corner_candidates() {
-    constexpr long first_precision = 192, max_precision = 1024;
-    constexpr int max_passes = 6;
+    if (corner_tried_) return false;
+    corner_tried_ = true;
+    constexpr long first_precision = 192, max_precision = 4096;
+    constexpr int max_passes = 12;
     const CylinderPair<Rational>& e = exact();
     const int larger = e.AA0 + 4 * e.c0.radius * e.c0.radius >= e.AA1 + 4 * e.c1.radius * e.c1.radius ? 0 : 1;
     for (const int i : {larger, 1 - larger}) {
@@ -1303,7 +1310,7 @@ class CylinderCylinderSolver {
         {
           GmpfrPrecision scope(precision);
           const CornerPlane plane = CornerPlane::make(ci, cj, y);
-          const CGAL::Gmpfr t = plane.best(static_cast<int>(precision * 3 / 2));
+          const CGAL::Gmpfr t = plane.best();
           const CGAL::Gmpfr g = plane.gain(t);
           needed = plane.bits_to_resolve(t, g);
           if (g > 0) {
@@ -1313,7 +1320,7 @@ class CylinderCylinderSolver {
             mpfr_mul_2si(spread.fr(), spread.fr(), -(precision * 9 / 10), MPFR_RNDN);
             X = plane.witness(t, spread, precision);
           }
-          next = plane.support(t).x;
+          next = X ? *X : plane.support(t).x;
         }
         if (D && exact_separates(*D)) return true;
         if (X && exact_overlaps(*X)) return true;
@@ -1321,7 +1328,7 @@ class CylinderCylinderSolver {
           precision = std::min(max_precision, std::max(2 * precision, needed));
           continue;  // the same plane, more bits
         }
-        if (next == y) break;
+        if (next == y || (pass >= 5 && !X)) break;  // beyond six planes only while witnesses come
         y = next;
       }
     }
@@ -1561,17 +1568,20 @@ class CylinderCylinderSolver {
     direction_problem_.emplace(*integer_, fitted);
   }
 
-  // Before the touching proofs, for input spanning over 256 binades: short fast runs of the
-  // point and direction searches (128 bits, 24 steps each) in the frames of the pair's slab and
-  // tube bounds (detail/cylinder_ellipsoid.hpp). A needle crossing a pancake overlaps in a region
-  // those frames make fat, and a needle's separating directions form a set they make fat: the
-  // runs find a certificate in a few steps, where the touching and Gmpfr stages would spend tens
-  // or hundreds of milliseconds. A touching pair costs the 48 steps.
+  // Before the touching proofs, for input spanning over 256 binades: the corner candidates (stage
+  // gmpfr, see corner_candidates), then short fast runs of the point and direction searches (128
+  // bits, 24 steps each) in the frames of the pair's slab and tube bounds
+  // (detail/cylinder_ellipsoid.hpp). A needle crossing a pancake overlaps in a region those
+  // frames make fat, and a needle's separating directions form a set they make fat: the runs
+  // find a certificate in a few steps, where the touching and Gmpfr stages would spend tens or
+  // hundreds of milliseconds. A touching pair costs the corner candidates and the 48 steps.
   bool ellipsoid_probe() {
     if (input_span_bits() <= 256) return false;
     const CylinderPair<Rational>& e = exact();
     if (e.T.x == 0 && e.T.y == 0 && e.T.z == 0) return false;
-    begin(CylinderStage::ellipsoid);
+    begin(CylinderStage::gmpfr);
+    if (corner_candidates()) return true;
+    switch_stage(CylinderStage::ellipsoid);
     result_.ellipsoid_precision = 128;
     ellipsoid_problems();
     return point_run(*point_problem_, EllipsoidMode::fast, 128, 24) || direction_run(*direction_problem_, EllipsoidMode::fast, 128, 24) ||
@@ -1647,6 +1657,7 @@ class CylinderCylinderSolver {
   std::optional<std::array<Rational, 2>> direction_start_;
   std::optional<RingFrame> ring_;  // ring()
   bool ring_tried_ = false;
+  bool corner_tried_ = false;  // corner_candidates() ran
   std::optional<CylinderPair<dd_real>> dd_pair_;  // world_pair<dd_real>() of rational input
   std::optional<Vec3<double>> optimum_;
   std::optional<Point3<double>> optimum_point_;

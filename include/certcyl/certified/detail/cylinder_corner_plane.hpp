@@ -115,33 +115,45 @@ class CornerPlane {
     return CGAL::abs(a * ca_[0]) + CGAL::abs(t * cr_[0]) + CGAL::abs(a * ca_[1]) + CGAL::abs(t * cr_[1]) + rj_;
   }
 
-  // The maximiser of gain on [0, 1], by golden-section search (gain is concave).
-  F best(int iterations) const {
-    const F ratio = (CGAL::sqrt(k(5)) - k(1)) / k(2);
-    F lo = k(0), hi = k(1);
-    F x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo);
-    F g1 = gain(x1), g2 = gain(x2);
-    for (int n = 0; n < iterations; ++n) {
-      if (g1 < g2) {
-        lo = x1;
-        x1 = x2;
-        g1 = g2;
-        x2 = lo + ratio * (hi - lo);
-        g2 = gain(x2);
-      } else {
-        hi = x2;
-        x2 = x1;
-        g2 = g1;
-        x1 = hi - ratio * (hi - lo);
-        g1 = gain(x1);
+  // The maximiser of gain on [0, 1], in closed form. gain is concave (a minimum of the linear
+  // L_k(t) = (1 - t) ca_k + t cr_k less r_j sqrt(q(t)), q(t) = |u x A_j + t v|^2 / |A_j|^2 with
+  // v = (e - u) x A_j, a norm of an affine function), so its maximum on [0, 1] is at an end, at
+  // the crossing of L_0 and L_1, at the zero of q (where sqrt(q) has its kink), or at a
+  // stationary point of one piece L_k - r_j sqrt(q): with slope m = cr_k - ca_k,
+  // alpha = v.v, t0 = -(u x A_j).v / alpha (the minimiser of q) and
+  // 4 alpha gamma - beta^2 = 4 |(u x A_j) x (e x A_j)|^2 (no cancellation),
+  //   t = t0 + (m / alpha) |(u x A_j) x (e x A_j)| sqrt(|A_j|^2 / (r_j^2 alpha - m^2 |A_j|^2)),
+  // which exists when m^2 |A_j|^2 < r_j^2 alpha. gain is evaluated at each of these points
+  // inside [0, 1] and the best is kept (an end on a tie: the cap and wall normals, where a
+  // maximum is exact).
+  F best() const {
+    std::array<F, 6> candidates;
+    int n = 0;
+    const auto add = [&](const F& t) {
+      if (t > 0 && t < 1) candidates[n++] = t;
+    };
+    const F dc = ca_[0] - ca_[1], dr = cr_[0] - cr_[1];
+    if (dc != dr) add(dc / (dc - dr));
+    const Vec3<F> v = ex_ - ux_;
+    const F alpha = dot(v, v);
+    if (alpha > 0) {
+      add(-dot(ux_, v) / alpha);
+      const Vec3<F> w = cross(ux_, ex_);
+      const F width = CGAL::sqrt(dot(w, w));
+      const F t0 = -dot(ux_, v) / alpha;
+      for (int e = 0; e < 2; ++e) {
+        const F m = cr_[e] - ca_[e];
+        const F room = rj_ * rj_ * alpha - m * m * jj_;
+        if (room > 0) add(t0 + (m / alpha) * width * CGAL::sqrt(jj_ / room));
       }
     }
-    F t = (lo + hi) / k(2), gt = gain(t);
-    // The ends are the cap and wall normals; a maximum there is exact.
-    for (const F& end : {k(0), k(1)}) {
-      const F ge = gain(end);
-      if (ge >= gt) t = end, gt = ge;
+    F t = k(0), gt = gain(t);
+    for (int i = 0; i < n; ++i) {
+      const F g = gain(candidates[i]);
+      if (g > gt) t = candidates[i], gt = g;
     }
+    const F g1 = gain(k(1));
+    if (g1 >= gt) t = k(1);
     return t;
   }
 
