@@ -3,8 +3,9 @@
 // aligned or in any orientation; lines, rays and segments).
 // The certified query is measured twice: the decision alone (answer and features: adaptive
 // polynomial signs in double, double-double, Mpzf; the fraction decided at each depth is
-// reported as static / dd / interval / exact) and the full result (exact endpoints and their
-// correctly rounded doubles), with double and with Rational input (binary64 values, so the
+// reported as static / dd / interval / exact) and the full result (the endpoints' correctly
+// rounded doubles, their exact values left to be built on request; BM_certified_full_exact
+// also prints both exact values), with double and with Rational input (binary64 values, so the
 // same path after a check). Run side by side (--benchmark_filter='robust|certified') and take
 // the ratios from one run: the machine's load moves all figures together.
 // BM_family/<k> reports, per family, Google Benchmark's mean (cycling through the instances)
@@ -255,6 +256,26 @@ void BM_certified_full(benchmark::State& state) {
   report_stages(state, counter);
 }
 
+// The full answer with the exact values of both endpoints materialised as strings (they are
+// built on request: BM_certified_full leaves them unbuilt).
+void BM_certified_full_exact(benchmark::State& state) {
+  const auto& in = instances(state.range(0) != 0);
+  std::size_t i = 0;
+  LineStageCounter counter;
+  for (auto _ : state) {
+    const auto& x = in[i++ & 1023];
+    const auto r = certified_line_cylinder(x.line, x.cyl);
+    counter.count(r.stage);
+    if (r.in) {
+      const std::string in_exact = r.in->exact(), out_exact = r.out->exact();
+      benchmark::DoNotOptimize(in_exact.data());
+      benchmark::DoNotOptimize(out_exact.data());
+    }
+    benchmark::DoNotOptimize(r);
+  }
+  report_stages(state, counter);
+}
+
 void BM_certified_full_rational_input(benchmark::State& state) {
   const auto& in = instances(state.range(0) != 0);
   std::vector<std::pair<Line<Rational>, Cylinder<Rational>>> conv;
@@ -367,6 +388,7 @@ BENCHMARK(BM_robust_double)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_decision)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_decision_interval_first)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_full)->Arg(0)->Arg(1);
+BENCHMARK(BM_certified_full_exact)->Arg(0)->Arg(1);
 BENCHMARK(BM_certified_full_rational_input)->Arg(0)->Arg(1);
 BENCHMARK(BM_shene<double>)->Arg(0)->Arg(1);
 BENCHMARK(BM_gullotti<double>)->Arg(0)->Arg(1);

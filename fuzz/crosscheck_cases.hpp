@@ -295,12 +295,12 @@ inline std::string same_interval(const CertifiedLineResult& base, const Certifie
   if (base.answer != r.answer) return "answer " + std::string(to_string(r.answer)) + " vs " + std::string(to_string(base.answer));
   if (base.answer == Answer::separated) return "";
   const auto mapped = [&](const CertifiedEndpoint& e) {
-    recheck::Root x = recheck::to_root(e.value);
+    recheck::Root x = recheck::to_root(e.value());
     return recheck::Root{Q(sign) * x.p + shift, Q(sign) * x.q, x.g};
   };
   const recheck::Root in = mapped(sign > 0 ? *r.in : *r.out), out = mapped(sign > 0 ? *r.out : *r.in);
-  if (recheck::compare(in, recheck::to_root(base.in->value)) != CGAL::ZERO ||
-      recheck::compare(out, recheck::to_root(base.out->value)) != CGAL::ZERO)
+  if (recheck::compare(in, recheck::to_root(base.in->value())) != CGAL::ZERO ||
+      recheck::compare(out, recheck::to_root(base.out->value())) != CGAL::ZERO)
     return "endpoints differ";
   return "";
 }

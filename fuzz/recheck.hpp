@@ -232,13 +232,13 @@ std::string check_line(const V& O, const V& d, LineRange range, const Solid& sol
   if (expected == Answer::separated) return (r.in || r.out) ? "endpoints on a separated answer" : "";
   if (!r.in || !r.out) return "missing endpoint";
   if (!closed.lo || !closed.hi) return "recomputed interval unbounded";  // cannot happen for valid input
-  const Root in = to_root(r.in->value), out = to_root(r.out->value);
+  const Root in = to_root(r.in->value()), out = to_root(r.out->value());
   if (compare(in, *closed.lo) != CGAL::ZERO) return "entry " + r.in->exact() + " differs from " + describe(*closed.lo);
   if (compare(out, *closed.hi) != CGAL::ZERO) return "exit " + r.out->exact() + " differs from " + describe(*closed.hi);
 
   // Each endpoint substituted into the equations: its surface and feature.
   for (const CertifiedEndpoint* e : {&*r.in, &*r.out}) {
-    const Root t = to_root(e->value);
+    const Root t = to_root(e->value());
     const auto [where, surface] = locate(q, t);
     if (where == Where::outside) return "endpoint " + e->exact() + " outside the solid";
     if (e->surface != surface)

@@ -59,7 +59,7 @@ BOOST_AUTO_TEST_CASE(recheck_rejects_wrong_answers) {
   CertifiedLineResult r = certified_line_cylinder(Line<Q>{O, d}, C);
   BOOST_TEST(recheck::check_line(O, d, LineRange::line, C, r) == "");
   CertifiedLineResult bad = r;
-  bad.out->value.alpha = Q(2);  // exit at t = 2 instead of 1
+  bad.out = CertifiedEndpoint(detail::QuadraticNumber{Q(2), 0, 0}, 2.0, r.out->feature, r.out->surface);  // exit at t = 2 instead of 1
   BOOST_TEST(recheck::check_line(O, d, LineRange::line, C, bad) != "");
   bad = r;
   bad.answer = Answer::touching;

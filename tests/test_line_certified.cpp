@@ -258,7 +258,7 @@ BOOST_AUTO_TEST_CASE(reversal_translation_scaling) {
     const auto rev = certified_line_cylinder(Line<Q>{line.origin, -line.direction}, cyl);
     BOOST_TEST(to_string(rev.answer) == to_string(r.answer));
     if (r.in) {
-      BOOST_TEST(detail::compare_with(rev.in->value, 0) == CGAL::opposite(detail::compare_with(r.out->value, 0)));
+      BOOST_TEST(detail::compare_with(rev.in->value(), 0) == CGAL::opposite(detail::compare_with(r.out->value(), 0)));
       BOOST_TEST(rev.in->nearest == -r.out->nearest);
       BOOST_TEST(rev.out->nearest == -r.in->nearest);
       BOOST_TEST(to_string(rev.in->feature) == to_string(r.out->feature));

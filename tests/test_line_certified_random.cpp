@@ -141,11 +141,11 @@ void verify(const Vec3<Q>& O, const Vec3<Q>& d, LineRange range, const Solid& so
       return;
     }
     BOOST_REQUIRE(r.in && r.out);
-    const E tin = to_expr(r.in->value), tout = to_expr(r.out->value);
+    const E tin = to_expr(r.in->value()), tout = to_expr(r.out->value());
     BOOST_TEST((r.answer == Answer::touching ? tin <= tout : tin < tout));
     auto point = [&](const Q& t) { return Vec3<Q>{O + t * d}; };
     for (const CertifiedEndpoint* e : {&*r.in, &*r.out}) {
-      const E t = to_expr(e->value);
+      const E t = to_expr(e->value());
       BOOST_TEST(to_string(e->surface) == to_string(surface_at(O, d, t, solid)));
       if (e->feature == LineFeature::origin)
         BOOST_TEST((t == 0));
@@ -164,7 +164,7 @@ void verify(const Vec3<Q>& O, const Vec3<Q>& d, LineRange range, const Solid& so
       const Q n(e.nearest);
       const Q step = Q(std::fabs(e.nearest)) * Q(std::ldexp(1.0, -40)) + Q(std::ldexp(1.0, -80));
       const Q t = side < 0 ? Q(n - step) : Q(n + step);
-      BOOST_TEST((side < 0 ? to_expr(t) < to_expr(e.value) : to_expr(t) > to_expr(e.value)));
+      BOOST_TEST((side < 0 ? to_expr(t) < to_expr(e.value()) : to_expr(t) > to_expr(e.value())));
       if (in_range(t, range)) BOOST_TEST(to_string(classify_point(point(t), solid)) == "outside");
     }
     // The midpoint, when a rational one is provably inside the interval.

@@ -281,10 +281,10 @@ BOOST_AUTO_TEST_CASE(seeds_in_core_expr_agree_with_certified) {
       BOOST_TEST(to_string(gu.answer) == to_string(cert.answer));
       if (cert.answer == Answer::overlapping && sh.in && gu.in) {
         ++overlapping;
-        BOOST_TEST(same(sh.in->t, cert.in->value));
-        BOOST_TEST(same(sh.out->t, cert.out->value));
-        BOOST_TEST(same(gu.in->t, cert.in->value));
-        BOOST_TEST(same(gu.out->t, cert.out->value));
+        BOOST_TEST(same(sh.in->t, cert.in->value()));
+        BOOST_TEST(same(sh.out->t, cert.out->value()));
+        BOOST_TEST(same(gu.in->t, cert.in->value()));
+        BOOST_TEST(same(gu.out->t, cert.out->value()));
         BOOST_TEST(to_string(sh.in->feature) == to_string(cert.in->feature));
         BOOST_TEST(to_string(gu.out->feature) == to_string(cert.out->feature));
       }

@@ -27,8 +27,14 @@
 // sign is undecided. Rational input whose numbers are all binary64 values takes the double
 // path. `FilterCounter` records the Gmpq fall-backs,
 // `LineStageCounter` / `CertifiedLineResult::stage` the stage that decided.
-// Exact endpoints: the quadric in Mpzf from binary64 input (Gmpq otherwise), one Gmpq
-// normalisation per endpoint, the nearest double from an MPFR enclosure.
+// Endpoints: from binary64 input against a circular cylinder, each endpoint's nearest double is
+// proved in double-double by the signs of its defining polynomial at the two midpoints around
+// it (certified/detail/line_nearest.hpp), and its exact value is built only when asked for
+// (CertifiedEndpoint::value(), exact()). Otherwise, and where that proof does not go through
+// (an endpoint on or within about 2^-90 of a midpoint, magnitudes outside its window): the
+// quadric in Mpzf from binary64 input (Gmpq otherwise), one Gmpq normalisation per endpoint,
+// the nearest double from the rational or an MPFR enclosure. Either way the exact value and
+// the nearest double are the same; CertifiedEndpoint::rounding says which proof was used.
 //
 // Inputs: exact Rational primitives (the command's input) or double primitives (each double
 // is taken as the exact binary64 value it holds, so the answer is the exact one for those
@@ -39,7 +45,8 @@
 //
 // API
 //   certified_line_cylinder(line | ray | segment, cylinder | elliptic cylinder)
-//       -> CertifiedLineResult: answer, endpoints (exact, nearest double, features), counter
+//       -> CertifiedLineResult: answer, endpoints (nearest double, features, exact value on
+//          request), counter
 //   certified_line_cylinder_shape(line | ray | segment, cylinder | elliptic cylinder, counter)
 //       -> detail::LineShape: the answer and the features without building the exact
 //          endpoints (the fast path; the same decision as above). counter: FilterCounter or
@@ -53,8 +60,10 @@
 #include <string_view>
 #include <type_traits>
 #include <utility>
+#include <variant>
 
 #include "certcyl/answer.hpp"
+#include "certcyl/certified/detail/line_nearest.hpp"
 #include "certcyl/certified/detail/line_shape.hpp"
 #include "certcyl/certified/detail/line_static_filter.hpp"
 #include "certcyl/certified/detail/quadratic_number.hpp"
@@ -66,14 +75,80 @@ namespace certcyl {
 
 using QuadraticNumber = detail::QuadraticNumber;
 
-// One endpoint of the certified interval.
-struct CertifiedEndpoint {
-  QuadraticNumber value;  // exact parameter t = alpha + beta sqrt(gamma)
-  double nearest = 0;     // the binary64 value nearest to `value` (ties to even)
+namespace detail {
+
+// A line-like input: origin and either a direction or a second point (segments), so that a
+// segment's direction p1 - p0 is formed in the number type of the computation.
+template <class In>
+struct LineInput {
+  Vec3<In> origin, second;
+  bool second_is_point = false;
+  LineRange range = LineRange::line;
+};
+
+template <class In>
+LineInput<In> line_input(const Line<In>& l) {
+  return {l.origin, l.direction, false, LineRange::line};
+}
+template <class In>
+LineInput<In> line_input(const Ray<In>& r) {
+  return {r.origin, r.direction, false, LineRange::ray};
+}
+template <class In>
+LineInput<In> line_input(const Segment<In>& s) {
+  return {s.p0, s.p1, true, LineRange::segment};
+}
+
+// What rebuilds one bound exactly from binary64 input against a circular cylinder.
+struct LineBoundSource {
+  LineInput<double> input;
+  Cylinder<double> cylinder;
+  BoundKind kind = BoundKind::range_lo;
+  TubeState tube = TubeState::empty;
+};
+
+}  // namespace detail
+
+// How an endpoint's nearest double was proved: the endpoint is 0 or 1, or a rational rounded
+// exactly; by the signs at the two midpoints in double-double (certified/detail/line_nearest.hpp);
+// by an MPFR enclosure of the exact value (certified/detail/quadratic_number.hpp).
+enum class EndpointRounding : unsigned char { exact_rational, double_double, mpfr };
+
+inline constexpr std::string_view to_string(EndpointRounding r) {
+  switch (r) {
+    case EndpointRounding::exact_rational: return "exact_rational";
+    case EndpointRounding::double_double: return "double_double";
+    case EndpointRounding::mpfr: break;
+  }
+  return "mpfr";
+}
+
+// One endpoint of the certified interval: the exact parameter t = alpha + beta sqrt(gamma)
+// (value(), printed by exact()), the binary64 value nearest to it (ties to even) and its
+// features. The exact value is computed on request: an endpoint whose nearest double was proved
+// in double-double keeps the binary64 input and which bound it is, and value() rebuilds the
+// exact number from them on each call (the same number, in the same normal form, as the eager
+// computation: keep the result to use it more than once); any other endpoint holds its value.
+class CertifiedEndpoint {
+ public:
+  double nearest = 0;  // the binary64 value nearest to value() (ties to even)
   LineFeature feature = LineFeature::none;
   LineFeature surface = LineFeature::none;
+  EndpointRounding rounding = EndpointRounding::mpfr;
 
-  std::string exact() const { return value.to_string(); }
+  CertifiedEndpoint() = default;
+  CertifiedEndpoint(QuadraticNumber value, double nearest_double, LineFeature feature_, LineFeature surface_,
+                    EndpointRounding how = EndpointRounding::mpfr)
+      : nearest(nearest_double), feature(feature_), surface(surface_), rounding(how), value_(std::move(value)) {}
+  CertifiedEndpoint(const detail::LineBoundSource& source, double nearest_double, LineFeature feature_, LineFeature surface_,
+                    EndpointRounding how)
+      : nearest(nearest_double), feature(feature_), surface(surface_), rounding(how), value_(source) {}
+
+  QuadraticNumber value() const;  // defined below
+  std::string exact() const { return value().to_string(); }
+
+ private:
+  std::variant<QuadraticNumber, detail::LineBoundSource> value_;
 };
 
 // Which stage of the filter decided (the deepest arithmetic any sign needed): the semi-static
@@ -120,28 +195,6 @@ struct CertifiedLineResult {
 };
 
 namespace detail {
-
-// A line-like input: origin and either a direction or a second point (segments), so that a
-// segment's direction p1 - p0 is formed in the number type of the computation.
-template <class In>
-struct LineInput {
-  Vec3<In> origin, second;
-  bool second_is_point = false;
-  LineRange range = LineRange::line;
-};
-
-template <class In>
-LineInput<In> line_input(const Line<In>& l) {
-  return {l.origin, l.direction, false, LineRange::line};
-}
-template <class In>
-LineInput<In> line_input(const Ray<In>& r) {
-  return {r.origin, r.direction, false, LineRange::ray};
-}
-template <class In>
-LineInput<In> line_input(const Segment<In>& s) {
-  return {s.p0, s.p1, true, LineRange::segment};
-}
 
 template <class NT, class In, class Solid>
 LineQuadric<NT> line_quadric_in(const LineInput<In>& in, const Solid& solid) {
@@ -192,6 +245,13 @@ std::optional<std::pair<LineInput<double>, Solid<double>>> as_binary64(const Lin
   return std::pair{din, dsolid};
 }
 
+// The stage of a decision by the adaptive signs.
+inline LineStage static_stage(const StaticCircularSigns& s) {
+  using Depth = StaticCircularSigns::Depth;
+  return s.depth() == Depth::binary64 ? LineStage::semi_static
+                                      : (s.depth() == Depth::double_double ? LineStage::double_double : LineStage::exact);
+}
+
 // The filtered decision: the adaptive polynomial signs (circular cylinders, binary64 input
 // inside the double stage's window: double, double-double, Mpzf per sign), else Interval_nt,
 // then Gmpq. Input in double (exact binary64 values) or Rational.
@@ -204,9 +264,7 @@ LineShape certified_shape(const LineInput<In>& in, const Solid& solid, LineStage
     if (s.usable()) {
       const LineShape shape = line_shape_from(s, in.range);
       // else: never undecided with escalation (every sign reaches Mpzf if it must)
-      using Depth = StaticCircularSigns::Depth;
-      stage = s.depth() == Depth::binary64 ? LineStage::semi_static
-                                            : (s.depth() == Depth::double_double ? LineStage::double_double : LineStage::exact);
+      stage = static_stage(s);
       return shape;
     }
   }
@@ -239,6 +297,42 @@ LineQuadric<Rational> exact_quadric(const LineInput<In>& in, const Solid& solid)
   }
 }
 
+// The endpoints of a decided shape. With `signs` (binary64 input against a circular cylinder,
+// decided by them), each endpoint's nearest double is first proved in double-double from the
+// same leaves (certified/detail/line_nearest.hpp) and its exact value left to be built on
+// request. Otherwise, and for an endpoint that proof does not reach: the exact quadric (made
+// once per query), the endpoint's exact value, its nearest double from the rational or an MPFR
+// enclosure.
+template <class In, class Solid>
+void certified_endpoints(const LineInput<In>& in, const Solid& solid, const LineShape& shape, StaticCircularSigns* signs,
+                         CertifiedLineResult& result) {
+  std::optional<LineNearest> fast;
+  std::optional<LineQuadric<Rational>> q;
+  std::optional<BoundValuesExact> exact;
+  auto endpoint = [&](BoundKind k, LineFeature feature, LineFeature surface) {
+    if constexpr (std::is_same_v<In, double> && std::is_same_v<Solid, Cylinder<double>>) {
+      if (signs != nullptr) {
+        if (!fast) fast.emplace(*signs);
+        if (const std::optional<double> n = (*fast)(k, shape.tube)) {
+          const bool range_bound = k == BoundKind::range_lo || k == BoundKind::range_hi;
+          return CertifiedEndpoint(LineBoundSource{in, solid, k, shape.tube}, *n, feature, surface,
+                                   range_bound ? EndpointRounding::exact_rational : EndpointRounding::double_double);
+        }
+      }
+    }
+    if (!exact) {
+      q = exact_quadric(in, solid);
+      exact.emplace(*q, shape.tube);
+    }
+    QuadraticNumber v = (*exact)(k);
+    const double n = nearest_double(v);
+    const EndpointRounding how = v.is_rational() ? EndpointRounding::exact_rational : EndpointRounding::mpfr;
+    return CertifiedEndpoint(std::move(v), n, feature, surface, how);
+  };
+  result.in = endpoint(shape.in, shape.in_feature, shape.in_surface);
+  result.out = endpoint(shape.out, shape.out_feature, shape.out_surface);
+}
+
 template <class In, class Solid>
 CertifiedLineResult certified_result(const LineInput<In>& in, const Solid& solid) {
   if constexpr (std::is_same_v<In, Rational>) {
@@ -246,23 +340,22 @@ CertifiedLineResult certified_result(const LineInput<In>& in, const Solid& solid
   }
   CertifiedLineResult result;
   result.range = in.range;
-  const LineShape shape = certified_shape(in, solid, result.stage);
   result.counter.calls = 1;
+  if constexpr (std::is_same_v<In, double> && std::is_same_v<Solid, Cylinder<double>>) {
+    StaticCircularSigns s(in.origin, in.second, in.second_is_point, solid, /*escalate=*/true);
+    if (s.usable()) {
+      const LineShape shape = line_shape_from(s, in.range);
+      result.stage = static_stage(s);
+      result.counter.exact = result.stage == LineStage::exact ? 1 : 0;
+      result.answer = shape.answer;
+      if (shape.answer != Answer::separated) certified_endpoints(in, solid, shape, &s, result);
+      return result;
+    }
+  }
+  const LineShape shape = certified_shape(in, solid, result.stage);
   result.counter.exact = result.stage == LineStage::exact ? 1 : 0;
   result.answer = shape.answer;
-  if (shape.answer == Answer::separated) return result;
-  const LineQuadric<Rational> q = exact_quadric(in, solid);
-  BoundValuesExact value(q, shape.tube);
-  auto endpoint = [&](BoundKind k, LineFeature feature, LineFeature surface) {
-    CertifiedEndpoint e;
-    e.value = value(k);
-    e.nearest = nearest_double(e.value);
-    e.feature = feature;
-    e.surface = surface;
-    return e;
-  };
-  result.in = endpoint(shape.in, shape.in_feature, shape.in_surface);
-  result.out = endpoint(shape.out, shape.out_feature, shape.out_surface);
+  if (shape.answer != Answer::separated) certified_endpoints(in, solid, shape, nullptr, result);
   return result;
 }
 
@@ -304,6 +397,18 @@ CertifiedLineResult certified_line_query(const LineLike& line, const Solid& soli
 }
 
 }  // namespace detail
+
+inline QuadraticNumber CertifiedEndpoint::value() const {
+  if (const QuadraticNumber* v = std::get_if<QuadraticNumber>(&value_)) return *v;
+  const detail::LineBoundSource& s = std::get<detail::LineBoundSource>(value_);
+  switch (s.kind) {
+    case detail::BoundKind::range_lo: return {0, 0, 0};
+    case detail::BoundKind::range_hi: return {1, 0, 0};
+    default: break;
+  }
+  const detail::LineQuadric<Rational> q = detail::exact_quadric(s.input, s.cylinder);
+  return detail::BoundValuesExact(q, s.tube)(s.kind);
+}
 
 // ---- The public entry points (In = Rational or double) --------------------------------------
 

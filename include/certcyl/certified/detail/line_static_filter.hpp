@@ -289,6 +289,18 @@ class StaticCircularSigns {
   bool undecided() const { return undecided_; }
   Depth depth() const { return depth_; }
 
+  // The leaves in double-double (every difference exact), made when first needed; nullptr
+  // outside the double-double window or under a rounding mode other than to nearest. A
+  // decision polynomial evaluated from them by CircularPolynomials<DD> (the same program as the
+  // stage's) has the bound dd_bound_value(line_dd_bounds::<its constant>).
+  const CircularLeaves<DD>* double_double_leaves() {
+    if (!dd_) make_dd_leaves();
+    return dd_usable_ ? &*dd_ : nullptr;
+  }
+  // B = fl(fl(C mlen^i) mdir^j) with the double-double leaves' magnitudes (after
+  // double_double_leaves()): at least 1.9 times the error of the double-double value.
+  double dd_bound_value(const StaticBound& b) const { return b.C * dd_len_pow_[b.deg_len] * dd_dir_pow_[b.deg_dir]; }
+
   // B = fl(fl(C mlen^i) mdir^j) of the header comment, for this input's magnitudes.
   double bound(const StaticBound& b) const { return b.C * len_pow_[b.deg_len] * dir_pow_[b.deg_dir]; }
 
@@ -394,8 +406,7 @@ class StaticCircularSigns {
     if (!dd_) make_dd_leaves();
     if (dd_usable_) {
       const DD v = slot_value(s, *dd_);
-      const StaticBound& b = dd_bound(s);
-      const double bound = b.C * dd_len_pow_[b.deg_len] * dd_dir_pow_[b.deg_dir];
+      const double bound = dd_bound_value(dd_bound(s));
       depth_ = std::max(depth_, Depth::double_double);
       if (v.hi() > bound) return CGAL::POSITIVE;
       if (v.hi() < -bound) return CGAL::NEGATIVE;

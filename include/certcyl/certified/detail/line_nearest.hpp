@@ -1,0 +1,205 @@
+// certcyl/certified/detail/line_nearest.hpp -- the binary64 value nearest to an endpoint of the
+// certified line interval (circular cylinder, binary64 input), proved in double-double without
+// building the exact endpoint; `nullopt` where the proof does not go through (the caller then
+// rounds the exact value with MPFR, certified/detail/quadratic_number.hpp).
+//
+// Certificate. Every endpoint other than 0 and 1 is a simple root t of a polynomial p whose
+// coefficients are decision polynomials of certified/detail/line_static_filter.hpp:
+//   a tube root           p(m) = a m^2 + 2 b m + c   (a > 0, disc > 0; t the lower or upper root)
+//   a tangent point       p(m) = a m + b             (disc = 0: t = -b/a)
+//   cap0, cap1            p(m) = sd m + sw,  sd m + w1.A   (t0 = -sw/sd, t1 = -(w1.A)/sd)
+// Let t^ be a double, 2^-60 <= |t^| <= 2^60, with neighbours t- < t^ < t+, and m- = (t- + t^)/2,
+// m+ = (t^ + t+)/2: the reals that round to t^ (ties to even) include the open (m-, m+). If
+// p(m-) and p(m+) are nonzero with opposite signs, a root lies in (m-, m+); it is t when p is
+// linear, and for the quadratic when the signs are (-, +) for the upper root, (+, -) for the
+// lower: p(m-) < 0 puts m- strictly between the roots and p(m+) > 0 puts m+ (> m- > lower
+// root) above the upper one (symmetrically for the lower). Then t is in (m-, m+), not on a
+// midpoint, and rounds to t^.
+//
+// Evaluation. m = t0 + H with t0 and H doubles (t0 the point of expansion, H = (t^ - t0) plus
+// or minus half a gap, formed exactly: checked), p(t0 + H) = g0 + H (g1 + c2 H) with
+// g0 = (c2 t0 + c1) t0 + c0 and g1 = 2 c2 t0 + c1, in double-double (DD of
+// line_double_double.hpp: each operation returns (x op y)(1 + delta), |delta| <= eps = 2^-100;
+// the doubling is exact) from the coefficients' double-double values c^i, whose errors are
+// at most their proved bounds Ei (line_dd_bounds; c1 = 2b has 2 E_b). The program has rounding
+// depth 5 and its expanded terms (c2 t0^2, c1 t0, c0, 2 c2 t0 H, c1 H, c2 H^2) sum in magnitude
+// to at most T = |c^2| M^2 + |c^1| M + |c^0|, M = |t0| + |H|, so
+//   |p^(m) - p(m)| <= E2 M^2 + E1 M + E0 + ((1 + eps)^5 - 1) T,
+// the first part from the coefficients, the second from the rounding (the induction of
+// line_static_filter.hpp). The bound used is twice that sum computed in double with
+// 6 eps for (1 + eps)^5 - 1 and the high parts for |c^i| (|hi + lo| <= |hi| (1 + 2^-53)): it is
+// at least 1.9 times the error, so the sign of p(m) is that of the high part of p^(m) when the
+// high part exceeds it (as in line_double_double.hpp).
+// No underflow, no overflow: inside the double-double window (nonzero inputs in
+// [2^-120, 2^100]) the leaves are multiples of 2^-172 and at most 2^101; the coefficients have
+// degree at most 4 in them; t0, t^ and H are multiples of 2^-114 (|t0|, |t^| >= 2^-60) and at
+// most 2^61. So every double formed is a multiple of 2^-916 (> 2^-1074: rounding as with an
+// unbounded exponent range, as in line_double_double.hpp) and below 2^20 2^404 2^122 < 2^996.
+// Round-to-nearest is required (checked with the leaves).
+//
+// Candidate. t0 from the high parts (the stable quadratic formula, or -c0/c1), then Newton
+// steps t^ = t0 - g0 / g1 in double, re-expanding at t^ while it moves by more than 2^-40 |t0|
+// (at most three times). The candidate only has to be right for the proof to succeed; a wrong
+// one makes it fail, never give a wrong answer.
+#pragma once
+
+#include <qd/inline.h>
+
+#include <cmath>
+#include <optional>
+
+#include "certcyl/certified/detail/line_double_double.hpp"
+#include "certcyl/certified/detail/line_shape.hpp"
+#include "certcyl/certified/detail/line_static_filter.hpp"
+
+namespace certcyl::detail {
+
+// p(m) = c2 m^2 + c1 m + c0 (c2 = 0 for a linear p) with |c^i - ci| <= ei.
+struct DDQuadratic {
+  DD c0, c1, c2;
+  double e0 = 0, e1 = 0, e2 = 0;
+  bool linear = false;
+};
+
+// 2 x, exact (both parts doubled; no overflow in the window).
+inline DD dd_twice(const DD& x) { return DD(dd_real(2 * x.v.x[0], 2 * x.v.x[1])); }
+
+// The sign of p(t0 + H) when the bound decides it, ZERO otherwise (header comment).
+class DDExpansion {
+ public:
+  DDExpansion(const DDQuadratic& p, double t0) : p_(p), t0_(t0) {
+    const DD T(t0);
+    if (p.linear) {
+      g1_ = p.c1;
+      g0_ = p.c1 * T + p.c0;
+    } else {
+      const DD P = p.c2 * T;
+      g1_ = dd_twice(P) + p.c1;
+      g0_ = (P + p.c1) * T + p.c0;
+    }
+  }
+
+  // The Newton step from t0 (in double).
+  double step() const { return -g0_.hi() / g1_.hi(); }
+
+  CGAL::Sign sign_at(double H) const {
+    const DD h(H);
+    const DD v = p_.linear ? DD(g0_ + g1_ * h) : DD(g0_ + (g1_ + p_.c2 * h) * h);
+    const double M = std::fabs(t0_) + std::fabs(H);
+    constexpr double rounding = 6 * 0x1p-100;
+    const double coefficients = (p_.e2 * M + p_.e1) * M + p_.e0;
+    const double magnitude = (std::fabs(p_.c2.hi()) * M + std::fabs(p_.c1.hi())) * M + std::fabs(p_.c0.hi());
+    const double bound = 2 * (coefficients + rounding * magnitude);
+    if (v.hi() > bound) return CGAL::POSITIVE;
+    if (v.hi() < -bound) return CGAL::NEGATIVE;
+    return CGAL::ZERO;
+  }
+
+ private:
+  const DDQuadratic& p_;
+  double t0_;
+  DD g0_, g1_;
+};
+
+inline bool in_parameter_window(double t) {
+  const double m = std::fabs(t);
+  return m >= 0x1p-60 && m <= 0x1p60;  // false for NaN
+}
+
+// The double nearest to the root of p between the signs (lower, upper) at m- and m+ (for a
+// linear p: any two opposite signs), starting from t0; nullopt when not proved.
+inline std::optional<double> nearest_root(const DDQuadratic& p, double t0, CGAL::Sign upper_sign) {
+  for (int step = 0;; ++step) {
+    if (!in_parameter_window(t0)) return std::nullopt;
+    const DDExpansion x(p, t0);
+    const double t = t0 + x.step();
+    if (!in_parameter_window(t)) return std::nullopt;
+    const double dt = t - t0;  // exact when |dt| <= |t0| / 2 (Sterbenz)
+    if (!(std::fabs(dt) <= std::fabs(t0) * 0x1p-40)) {
+      if (step == 3) return std::nullopt;
+      t0 = t;
+      continue;
+    }
+    // Half the gaps to the neighbours of t (exact: a gap is a power of two >= 2^-113).
+    const double below = (std::nextafter(t, -INFINITY) - t) / 2, above = (std::nextafter(t, INFINITY) - t) / 2;
+    double err_lo = 0, err_hi = 0;
+    const double H_lo = qd::two_sum(dt, below, err_lo), H_hi = qd::two_sum(dt, above, err_hi);
+    if (err_lo != 0 || err_hi != 0) return std::nullopt;
+    const CGAL::Sign s_lo = x.sign_at(H_lo), s_hi = x.sign_at(H_hi);
+    if (s_lo == CGAL::ZERO || s_hi == CGAL::ZERO || s_lo == s_hi) return std::nullopt;
+    if (upper_sign != CGAL::ZERO && s_hi != upper_sign) return std::nullopt;
+    return t;
+  }
+}
+
+// The nearest doubles of a query's endpoints from its sign source (the double-double leaves
+// and the bounds of line_static_filter.hpp); the tube's coefficients are made once.
+class LineNearest {
+ public:
+  explicit LineNearest(StaticCircularSigns& s) : leaves_(s.double_double_leaves()), signs_(s) {}
+
+  std::optional<double> operator()(BoundKind k, TubeState tube) {
+    switch (k) {
+      case BoundKind::range_lo: return 0.0;
+      case BoundKind::range_hi: return 1.0;
+      default: break;
+    }
+    if (leaves_ == nullptr) return std::nullopt;
+    const CircularLeaves<DD>& l = *leaves_;
+    namespace b = line_dd_bounds;
+    using Q = CircularPolynomials<DD>;
+    if (k == BoundKind::cap0 || k == BoundKind::cap1) {
+      DDQuadratic p;
+      p.linear = true;
+      p.c1 = Q::dot(l.d, l.A);
+      p.e1 = signs_.dd_bound_value(b::dot_ld);
+      p.c0 = Q::dot(k == BoundKind::cap0 ? l.w : l.w1, l.A);
+      p.e0 = signs_.dd_bound_value(b::dot_ll);
+      return nearest_root(p, -p.c0.hi() / p.c1.hi(), CGAL::ZERO);
+    }
+    if (!tube_) make_tube();
+    const DDQuadratic& q = *tube_;
+    const double a = q.c2.hi(), b2 = q.c1.hi(), c = q.c0.hi();
+    if (tube == TubeState::point) {
+      // a m + b: the same coefficients, halved middle one (exact).
+      DDQuadratic p;
+      p.linear = true;
+      p.c1 = q.c2;
+      p.e1 = q.e2;
+      p.c0 = DD(dd_real(q.c1.v.x[0] / 2, q.c1.v.x[1] / 2));
+      p.e0 = q.e1 / 2;
+      return nearest_root(p, -b2 / (2 * a), CGAL::ZERO);
+    }
+    // The stable formula from the high parts: roots of a m^2 + b2 m + c.
+    const double disc = b2 * b2 - 4 * a * c;
+    if (!(disc > 0)) return std::nullopt;
+    const double qq = -0.5 * (b2 + std::copysign(std::sqrt(disc), b2));
+    const double r1 = qq / a, r2 = c / qq;
+    const bool upper = k == BoundKind::tube_hi;
+    const double t0 = upper ? std::max(r1, r2) : std::min(r1, r2);
+    return nearest_root(q, t0, upper ? CGAL::POSITIVE : CGAL::NEGATIVE);
+  }
+
+ private:
+  // a, 2b and c (header comment), with u = w x A and v = d x A shared: the same programs as
+  // CircularPolynomials a, b and excess, so their bounds apply.
+  void make_tube() {
+    const CircularLeaves<DD>& l = *leaves_;
+    namespace bd = line_dd_bounds;
+    const SV3<DD> u = scross(l.w, l.A), v = scross(l.d, l.A);
+    DDQuadratic p;
+    p.c2 = sdot(v, v);
+    p.e2 = signs_.dd_bound_value(bd::a);
+    p.c1 = dd_twice(sdot(u, v));
+    p.e1 = 2 * signs_.dd_bound_value(bd::b);
+    p.c0 = sdot(u, u) - l.r * l.r * sdot(l.A, l.A);
+    p.e0 = signs_.dd_bound_value(bd::excess);
+    tube_ = p;
+  }
+
+  const CircularLeaves<DD>* leaves_;
+  StaticCircularSigns& signs_;
+  std::optional<DDQuadratic> tube_;
+};
+
+}  // namespace certcyl::detail
