@@ -267,7 +267,8 @@ void BM_certified_full_exact(benchmark::State& state) {
     const auto r = certified_line_cylinder(x.line, x.cyl);
     counter.count(r.stage);
     if (r.in) {
-      const std::string in_exact = r.in->exact(), out_exact = r.out->exact();
+      const auto [in_value, out_value] = r.exact_values();
+      const std::string in_exact = in_value.to_string(), out_exact = out_value.to_string();
       benchmark::DoNotOptimize(in_exact.data());
       benchmark::DoNotOptimize(out_exact.data());
     }

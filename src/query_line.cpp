@@ -22,12 +22,14 @@ ojson certified_json(const CertifiedLineResult& r) {
   const std::string stage = r.stage == LineStage::semi_static ? "static" : std::string(to_string(r.stage));
   ojson out = answer_json(r.answer, true, "certified", stage);
   ojson interval = ojson::array();
-  for (const auto* e : {&r.in, &r.out}) {
-    if (!*e) continue;
-    interval.push_back(ojson{{"exact", (*e)->exact()},
-                             {"approx", (*e)->nearest},
-                             {"feature", std::string(to_string((*e)->feature))},
-                             {"surface", std::string(to_string((*e)->surface))}});
+  if (r.in) {
+    const auto [in, out] = r.exact_values();
+    for (const auto& [e, value] : {std::pair{&*r.in, &in}, std::pair{&*r.out, &out}}) {
+      interval.push_back(ojson{{"exact", value->to_string()},
+                               {"approx", e->nearest},
+                               {"feature", std::string(to_string(e->feature))},
+                               {"surface", std::string(to_string(e->surface))}});
+    }
   }
   out["interval"] = interval;
   // The endpoints are the proof: each is an exact root of the tube quadratic or a cap plane's

@@ -146,6 +146,8 @@ class CertifiedEndpoint {
 
   QuadraticNumber value() const;  // defined below
   std::string exact() const { return value().to_string(); }
+  // What value() rebuilds the exact number from, or nullptr when it holds the number.
+  const detail::LineBoundSource* source() const { return std::get_if<detail::LineBoundSource>(&value_); }
 
  private:
   std::variant<QuadraticNumber, detail::LineBoundSource> value_;
@@ -192,6 +194,10 @@ struct CertifiedLineResult {
   std::optional<CertifiedEndpoint> in, out;  // set unless separated; equal values for a point
   FilterCounter counter;                      // this query: calls = 1, exact = 1 if intervals could not decide
   LineStage stage = LineStage::exact;         // the stage that decided
+
+  // Both endpoints' exact values (in, out; the result must not be separated), the exact quadric
+  // built once for the two: what in->value() and out->value() give, at about half their cost.
+  std::pair<QuadraticNumber, QuadraticNumber> exact_values() const;  // defined below
 };
 
 namespace detail {
@@ -408,6 +414,21 @@ inline QuadraticNumber CertifiedEndpoint::value() const {
   }
   const detail::LineQuadric<Rational> q = detail::exact_quadric(s.input, s.cylinder);
   return detail::BoundValuesExact(q, s.tube)(s.kind);
+}
+
+inline std::pair<QuadraticNumber, QuadraticNumber> CertifiedLineResult::exact_values() const {
+  const detail::LineBoundSource* a = in->source();
+  const detail::LineBoundSource* b = out->source();
+  if (a == nullptr || b == nullptr) return {in->value(), out->value()};
+  const detail::LineQuadric<Rational> q = detail::exact_quadric(a->input, a->cylinder);
+  detail::BoundValuesExact bounds(q, a->tube);
+  const auto value = [&bounds](const detail::LineBoundSource& s) -> QuadraticNumber {
+    if (s.kind == detail::BoundKind::range_lo) return {0, 0, 0};
+    if (s.kind == detail::BoundKind::range_hi) return {1, 0, 0};
+    return bounds(s.kind);
+  };
+  QuadraticNumber first = value(*a);
+  return {std::move(first), value(*b)};
 }
 
 // ---- The public entry points (In = Rational or double) --------------------------------------
