@@ -758,6 +758,10 @@ void check_endpoints(const Query& x, NearestStats& st) {
       case EndpointRounding::mpfr: ++st.mpfr; break;
     }
   }
+  // Both values from one exact quadric: the same numbers as each endpoint's own.
+  const auto [in, out] = r.exact_values();
+  BOOST_TEST(in.to_string() == r.in->value().to_string());
+  BOOST_TEST(out.to_string() == r.out->value().to_string());
 }
 
 void print(const char* what, const NearestStats& st) {
