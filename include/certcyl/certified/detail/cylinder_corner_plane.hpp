@@ -12,7 +12,7 @@
 // r_j) has min over j of D.x = min_k D.E_k - r_j |D x A_j| / |A_j|, so D separates i from j iff
 //   g(D) = min_k D.(E_k - q) - r_j |D x A_j| / |A_j| > 0.
 // g (a minimum of linear functions minus a norm) is concave; on D(t) = (1 - t) u + t e it is
-// concave in t in [0, 1] and golden-section search finds its maximiser t*. Its inputs are reduced
+// concave in t in [0, 1], and best() finds its maximiser t* in closed form. Its inputs are reduced
 // exactly to the scale of the contact, relative to j's ends (not its midpoint: a needle 2^1000
 // long would cancel every bit):
 //   (E_k - q).u = s ((E_k - p0).A - [E = p1] A.A) / |A|   (s = +-1, the sign of u),
