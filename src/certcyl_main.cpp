@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
       });
   query->add_flag("--brief", options.brief,
                   "Only id, meta, answer, the interval of a line query as two doubles (certified: the proved\n"
-                  "nearest doubles of the exact endpoints), the gap of a pair and the reason of an invalid answer");
+                  "nearest doubles of the exact endpoints), the certified gap and the reason of an invalid answer");
   query->add_option("--threads", threads, "Worker threads (default 1; 0 = all cores)")->check(CLI::Range(0u, 1024u));
   query->add_flag("--line-buffered", options.line_buffered,
                   "Answer every line and flush its answer as soon as it is read (for a co-process; without it\n"

@@ -141,7 +141,9 @@ class QueryResult:
     the answer is proved; method, nt: the method and the number type or stage that decided;
     certificate: the certificate, exact rationals as Fraction (other exact values, such as
     "a + b*sqrt(c)", as strings); interval: for line, ray and segment queries, the ends of the
-    parameter interval; gap: for cylinder pairs; line: the whole answer line as a dict.
+    parameter interval; gap: the certified signed gap [lo, hi] of a certified answer (log(phi*)
+    for cylinder pairs, the depth margin of the other queries); line: the whole answer line as a
+    dict.
     """
 
     _codes = {"separated": SEPARATED, "touching": TOUCHING, "overlapping": OVERLAPPING, "undecided": UNDECIDED}
