@@ -4,7 +4,7 @@
 # runs each for the given time from its seed corpus (fuzz/corpus/<harness>/, copied, so the
 # repository's corpus is left unchanged).
 #   scripts/fuzz.sh [seconds]     default 60 s per harness
-# Then the cylinder-pair harness again, for CERTCYL_FUZZ_PAIR_SECONDS (default 4 times the
+# Then the cylinder-pair harness again, for CERTCYL_FUZZ_PAIR_SECONDS (default 5 times the
 # given time), from the corpus the sanitised run left, in a second build (build-fuzz/: clang -O2,
 # UndefinedBehaviorSanitizer and libFuzzer without AddressSanitizer, assertions on): each of its
 # inputs runs two exact queries and their exact re-checks, so the sanitised build reaches a few
@@ -47,7 +47,7 @@ for h in "${harnesses[@]}"; do
 done
 # The cylinder-pair harness without AddressSanitizer, from the corpus of the run above.
 fast=build-fuzz
-pair_seconds="${CERTCYL_FUZZ_PAIR_SECONDS:-$((4 * seconds))}"
+pair_seconds="${CERTCYL_FUZZ_PAIR_SECONDS:-$((5 * seconds))}"
 cmake -S . -B "$fast" -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_COMPILER=clang++ \
   -DCMAKE_CXX_FLAGS="-fsanitize=undefined,fuzzer-no-link -fno-sanitize-recover=all -fno-omit-frame-pointer -O2 -g1" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=undefined" -DCERTCYL_SANITIZE=ON -DCERTCYL_FUZZ=ON -DCERTCYL_FUZZ_SANITIZE=undefined \
