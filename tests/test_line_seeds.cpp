@@ -84,8 +84,7 @@ void check(const LineInterval<NT>& r, const Expect& e, const std::string& what) 
   }
 }
 
-const LineFeature W = LineFeature::wall, C0 = LineFeature::cap0, C1 = LineFeature::cap1, R0 = LineFeature::rim0,
-                  R1 = LineFeature::rim1;
+const LineFeature W = LineFeature::wall, C0 = LineFeature::cap0, C1 = LineFeature::cap1;
 
 }  // namespace
 
