@@ -303,6 +303,33 @@ LineQuadric<Rational> exact_quadric(const LineInput<In>& in, const Solid& solid)
   }
 }
 
+// The exact values of a query's bounds: 0 and 1 directly, the others from the exact quadric,
+// built on the first request and kept for the next.
+template <class In, class Solid>
+class ExactBounds {
+ public:
+  ExactBounds(const LineInput<In>& in, const Solid& solid, TubeState tube) : in_(in), solid_(solid), tube_(tube) {}
+  ExactBounds(const ExactBounds&) = delete;  // bounds_ refers to q_
+  ExactBounds& operator=(const ExactBounds&) = delete;
+
+  QuadraticNumber operator()(BoundKind k) {
+    if (k == BoundKind::range_lo) return {0, 0, 0};
+    if (k == BoundKind::range_hi) return {1, 0, 0};
+    if (!bounds_) {
+      q_ = exact_quadric(in_, solid_);
+      bounds_.emplace(*q_, tube_);
+    }
+    return (*bounds_)(k);
+  }
+
+ private:
+  const LineInput<In>& in_;
+  const Solid& solid_;
+  TubeState tube_;
+  std::optional<LineQuadric<Rational>> q_;
+  std::optional<BoundValuesExact> bounds_;
+};
+
 // The endpoints of a decided shape. With `signs` (binary64 input against a circular cylinder,
 // decided by them), each endpoint's nearest double is first proved in double-double from the
 // same leaves (certified/detail/line_nearest.hpp) and its exact value left to be built on
@@ -313,8 +340,7 @@ template <class In, class Solid>
 void certified_endpoints(const LineInput<In>& in, const Solid& solid, const LineShape& shape, StaticCircularSigns* signs,
                          CertifiedLineResult& result) {
   std::optional<LineNearest> fast;
-  std::optional<LineQuadric<Rational>> q;
-  std::optional<BoundValuesExact> exact;
+  ExactBounds exact(in, solid, shape.tube);
   auto endpoint = [&](BoundKind k, LineFeature feature, LineFeature surface) {
     if constexpr (std::is_same_v<In, double> && std::is_same_v<Solid, Cylinder<double>>) {
       if (signs != nullptr) {
@@ -326,11 +352,7 @@ void certified_endpoints(const LineInput<In>& in, const Solid& solid, const Line
         }
       }
     }
-    if (!exact) {
-      q = exact_quadric(in, solid);
-      exact.emplace(*q, shape.tube);
-    }
-    QuadraticNumber v = (*exact)(k);
+    QuadraticNumber v = exact(k);
     const double n = nearest_double(v);
     const EndpointRounding how = v.is_rational() ? EndpointRounding::exact_rational : EndpointRounding::mpfr;
     return CertifiedEndpoint(std::move(v), n, feature, surface, how);
@@ -407,28 +429,16 @@ CertifiedLineResult certified_line_query(const LineLike& line, const Solid& soli
 inline QuadraticNumber CertifiedEndpoint::value() const {
   if (const QuadraticNumber* v = std::get_if<QuadraticNumber>(&value_)) return *v;
   const detail::LineBoundSource& s = std::get<detail::LineBoundSource>(value_);
-  switch (s.kind) {
-    case detail::BoundKind::range_lo: return {0, 0, 0};
-    case detail::BoundKind::range_hi: return {1, 0, 0};
-    default: break;
-  }
-  const detail::LineQuadric<Rational> q = detail::exact_quadric(s.input, s.cylinder);
-  return detail::BoundValuesExact(q, s.tube)(s.kind);
+  return detail::ExactBounds(s.input, s.cylinder, s.tube)(s.kind);
 }
 
 inline std::pair<QuadraticNumber, QuadraticNumber> CertifiedLineResult::exact_values() const {
   const detail::LineBoundSource* a = in->source();
   const detail::LineBoundSource* b = out->source();
   if (a == nullptr || b == nullptr) return {in->value(), out->value()};
-  const detail::LineQuadric<Rational> q = detail::exact_quadric(a->input, a->cylinder);
-  detail::BoundValuesExact bounds(q, a->tube);
-  const auto value = [&bounds](const detail::LineBoundSource& s) -> QuadraticNumber {
-    if (s.kind == detail::BoundKind::range_lo) return {0, 0, 0};
-    if (s.kind == detail::BoundKind::range_hi) return {1, 0, 0};
-    return bounds(s.kind);
-  };
-  QuadraticNumber first = value(*a);
-  return {std::move(first), value(*b)};
+  detail::ExactBounds bounds(a->input, a->cylinder, a->tube);
+  QuadraticNumber first = bounds(a->kind);
+  return {std::move(first), bounds(b->kind)};
 }
 
 // ---- The public entry points (In = Rational or double) --------------------------------------
