@@ -125,6 +125,17 @@ BOOST_AUTO_TEST_CASE(double_double_error_constants) {
   check("pierce c-c", dd.pierce[1][1], s.pierce[1][1]);
   check("gap c-c", dd.gap[1][1], s.gap[1][1]);
   check("slope c-c at c", dd.slope[1][1][1], s.slope[1][1][1]);
+  // The vertex forms' constants (D, P, G of degrees 3, 4, 6): in double on the static stage's
+  // leaves, in double-double on exact ones; within the margins of both headers' arguments.
+  const detail::VertexFormBounds& vd = detail::static_vertex_form_bounds();
+  const detail::VertexFormBounds& vdd = detail::vertex_form_bounds();
+  std::cout << "vertex forms e: double D " << vd.D << ", P " << vd.P << ", G " << vd.G << "; double-double D " << vdd.D
+            << ", P " << vdd.P << ", G " << vdd.G << "\n";
+  for (const auto& [d, q] : {std::pair{vd.D, vdd.D}, std::pair{vd.P, vdd.P}, std::pair{vd.G, vdd.G}}) {
+    BOOST_TEST((d >= 0x1p-53 && d < 0x1p-20));
+    BOOST_TEST((q >= 0x1p-101 && q < d * 0x1p-40));
+  }
+  BOOST_TEST((vd.b < 0x1p40 && vdd.b < 0x1p40));
   // Outside the window the stage is skipped, whatever the input.
   const TD t{{Point3<double>{0x1p-30, 0, 1}, Point3<double>{3, 0, 1}, Point3<double>{3, 1, 1}}};
   BOOST_TEST(!detail::double_double_decide_triangle_cylinder(t, Z).has_value());
@@ -342,4 +353,119 @@ BOOST_AUTO_TEST_CASE(per_sign_double_double_equals_the_whole_stage) {
   std::cout << "  decided by the whole double-double stage " << whole << ", by the per-sign stage " << per_sign
             << " (escalated " << escalated << ")\n";
   BOOST_TEST(escalated > 1000);
+}
+
+// The hard families of bench/bench_triangle_cylinder.cpp (BM_family), built the same way in
+// any orientation: a boundary feature of the cylinder (the wall, a cap plane, a rim) in an
+// oriented frame, the triangle's vertex, edge or face on it, rounded and moved by -3..3 ulps
+// per coordinate; every other instance with the cylinder's ends exchanged (so both caps).
+namespace {
+
+enum HardFamily { kVertexOnWall, kEdgeOnWall, kFaceOnWall, kFaceInCap, kVertexOnRim, kEdgeOnRim, kVertexInCap, kHardFamilies };
+const char* const kHardFamilyNames[kHardFamilies] = {"vertex_on_wall", "edge_on_wall", "face_on_wall", "face_in_cap",
+                                                     "vertex_on_rim",  "edge_on_rim",  "vertex_in_cap"};
+
+struct HardInstance {
+  TD t;
+  CD c;
+};
+
+std::vector<HardInstance> hard_family(int family, int count, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> ulps(-3, 3);
+  const auto rv = [&] { return Vec3<double>{u(rng), u(rng), u(rng)}; };
+  const auto vcross = [](const Vec3<double>& a, const Vec3<double>& b) {
+    return Vec3<double>{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+  };
+  const auto unit = [](const Vec3<double>& v) { return v * (1 / std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z)); };
+  const auto nudge = [&](const Vec3<double>& v) {
+    Vec3<double> w = v;
+    for (double* x : {&w.x, &w.y, &w.z}) {
+      const int k = ulps(rng);
+      for (int i = 0; i < std::abs(k); ++i) *x = std::nextafter(*x, k > 0 ? INFINITY : -INFINITY);
+    }
+    return w;
+  };
+  const auto pos = [&] { return 0.25 + std::fabs(u(rng)); };
+  std::vector<HardInstance> out;
+  while (static_cast<int>(out.size()) < count) {
+    const Vec3<double> p0 = rv(), p1 = p0 + rv() * 2.0;
+    const double r = 0.25 + std::fabs(u(rng));
+    const Vec3<double> A = p1 - p0, a = unit(A);
+    const Vec3<double> n = unit(vcross(A, rv())), m = unit(vcross(a, n));
+    const Vec3<double> W = p0 + A * (0.25 + 0.5 * std::fabs(u(rng))) + n * r;  // a wall point, normal n
+    const Vec3<double> P = p1 + n * r;                                         // a rim point of cap 1
+    Vec3<double> v0, v1, v2;
+    switch (family) {
+      case kVertexOnWall: v0 = W, v1 = W + n * pos() + m * u(rng), v2 = W + n * pos() + a * u(rng); break;
+      case kEdgeOnWall: {
+        const Vec3<double> d = m + a * (0.5 * u(rng));
+        v0 = W - d * pos(), v1 = W + d * pos(), v2 = W + n * pos() + m * u(rng);
+        break;
+      }
+      case kFaceOnWall: v0 = W - m * pos(), v1 = W + m * pos() + a * (0.5 * pos()), v2 = W + m * u(rng) - a * (0.5 * pos()); break;
+      case kFaceInCap:
+        v0 = p1 + n * (2 * r * u(rng)) + m * (2 * r), v1 = p1 + n * (2 * r * u(rng)) - m * (2 * r), v2 = p1 + n * (2 * r) + m * u(rng);
+        break;
+      case kVertexOnRim: v0 = P, v1 = P + n * pos() + a * u(rng), v2 = P + a * pos() + m * u(rng); break;
+      case kEdgeOnRim: v0 = P - m * pos(), v1 = P + m * pos(), v2 = P + n * pos() + a * pos(); break;
+      default: {  // kVertexInCap
+        const Vec3<double> V = p1 + n * (r * 0.9 * u(rng)) + m * (r * 0.4 * u(rng));
+        v0 = V, v1 = V + a * pos() + n * u(rng), v2 = V + a * pos() + m * u(rng);
+        break;
+      }
+    }
+    const TD t{{Point3<double>(nudge(v0)), Point3<double>(nudge(v1)), Point3<double>(nudge(v2))}};
+    const Point3<double> q0(nudge(p0)), q1(nudge(p1));
+    out.push_back({t, out.size() % 2 ? CD{q1, q0, r} : CD{q0, q1, r}});
+  }
+  return out;
+}
+
+}  // namespace
+
+// On the hard families every answer is the Gmpq decision's, none needs Interval_nt or exact
+// arithmetic, and no sign test on a crossing with a cap plane is evaluated as its own
+// double-double tree (degree up to 14) or its interval enclosure: the vertex forms decide them
+// all (from double values on a face in a cap plane; with double-double values for a rim
+// vertex's own entries on the rims). Before the vertex forms came first, every such test went
+// through its double-double tree, and on a face in a cap plane most of them on to the
+// enclosure.
+BOOST_AUTO_TEST_CASE(hard_families_decide_crossings_through_the_vertex_forms) {
+  const unsigned seed = 2026;
+  std::cout << "hard_families: seed " << seed << "\n";
+  for (int family = 0; family < kHardFamilies; ++family) {
+    TriangleFilterStages stages;
+    detail::EscalatedSigns signs;
+    int crossing_trees = 0;
+    for (const HardInstance& in : hard_family(family, 1000, seed + family)) {
+      const Answer a = classify_triangle_cylinder(in.t, in.c, stages);
+      const detail::EscalatedTriangleDecision e = detail::escalating_decide_triangle_cylinder(in.t, in.c);
+      BOOST_TEST_CONTEXT(kHardFamilyNames[family]) {
+        BOOST_TEST_REQUIRE(a == gmpq_decision(in.t, in.c).answer);
+        BOOST_TEST_REQUIRE(e.decision.has_value());
+        BOOST_TEST_REQUIRE(e.decision->answer == a);
+      }
+      signs.double_forms += e.signs.double_forms;
+      signs.mixed_forms += e.signs.mixed_forms;
+      signs.dd_forms += e.signs.dd_forms;
+      signs.dd_tree += e.signs.dd_tree;
+      signs.enclosure += e.signs.enclosure;
+      crossing_trees += e.signs.crossing_trees;
+    }
+    std::cout << "  " << kHardFamilyNames[family] << ": static " << stages.semi_static << ", double-double "
+              << stages.double_double << ", interval " << stages.interval << ", exact " << stages.exact
+              << "; escalated signs: double forms " << signs.double_forms << ", mixed forms " << signs.mixed_forms
+              << ", double-double forms " << signs.dd_forms << ", trees " << signs.dd_tree << " (on a crossing "
+              << crossing_trees << "), enclosures " << signs.enclosure << "\n";
+    BOOST_TEST_CONTEXT(kHardFamilyNames[family]) {
+      BOOST_TEST(stages.interval + stages.exact == 0u);
+      BOOST_TEST(crossing_trees == 0);
+      if (family == kFaceInCap) {
+        BOOST_TEST(signs.double_forms > 2000);  // about 4 a triangle
+        BOOST_TEST(signs.mixed_forms + signs.dd_forms == 0);
+      }
+    }
+  }
 }
