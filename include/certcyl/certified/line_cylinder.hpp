@@ -29,9 +29,11 @@
 // `LineStageCounter` / `CertifiedLineResult::stage` the stage that decided.
 // Endpoints: from binary64 input against a circular cylinder, each endpoint's nearest double is
 // proved in double-double by the signs of its defining polynomial at the two midpoints around
-// it (certified/detail/line_nearest.hpp), and its exact value is built only when asked for
-// (CertifiedEndpoint::value(), exact()). Otherwise, and where that proof does not go through
-// (an endpoint on or within about 2^-90 of a midpoint, magnitudes outside its window): the
+// it (certified/detail/line_nearest.hpp; a tangent point at t = 0 by the exact sign of b), and
+// its exact value is built only when asked for (CertifiedEndpoint::value(), exact()).
+// Otherwise, and where that proof does not go through (an endpoint on or within about 2^-90 of
+// a midpoint, roots so near 0 that the bound cannot separate them from the midpoints,
+// magnitudes outside its window): the
 // quadric in Mpzf from binary64 input (Gmpq otherwise), one Gmpq normalisation per endpoint,
 // the nearest double from the rational or an MPFR enclosure. Either way the exact value and
 // the nearest double are the same; CertifiedEndpoint::rounding says which proof was used.
@@ -345,10 +347,9 @@ void certified_endpoints(const LineInput<In>& in, const Solid& solid, const Line
     if constexpr (std::is_same_v<In, double> && std::is_same_v<Solid, Cylinder<double>>) {
       if (signs != nullptr) {
         if (!fast) fast.emplace(*signs);
-        if (const std::optional<double> n = (*fast)(k, shape.tube)) {
-          const bool range_bound = k == BoundKind::range_lo || k == BoundKind::range_hi;
-          return CertifiedEndpoint(LineBoundSource{in, solid, k, shape.tube}, *n, feature, surface,
-                                   range_bound ? EndpointRounding::exact_rational : EndpointRounding::double_double);
+        if (const std::optional<ProvedNearest> n = (*fast)(k, shape.tube)) {
+          return CertifiedEndpoint(LineBoundSource{in, solid, k, shape.tube}, n->nearest, feature, surface,
+                                   n->exact ? EndpointRounding::exact_rational : EndpointRounding::double_double);
         }
       }
     }

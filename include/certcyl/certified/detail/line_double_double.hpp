@@ -70,7 +70,21 @@ struct DD {
 
   friend DD operator+(const DD& x, const DD& y) { return DD(dd_real::ieee_add(x.v, y.v)); }
   friend DD operator-(const DD& x, const DD& y) { return DD(dd_real::ieee_add(x.v, -y.v)); }
-  friend DD operator*(const DD& x, const DD& y) { return DD(x.v * y.v); }
+  // QD's operator* (qd/dd_inline.h: two_prod of the high parts, the cross terms, quick_two_sum)
+  // written out, with Dekker's split (qd/inline.h split) without QD's rescaling branch for
+  // operands above 2^996: in the window no operand reaches it (header comment), so the result
+  // is QD's, bit for bit, at fewer instructions and inlined.
+  [[gnu::always_inline]] friend DD operator*(const DD& x, const DD& y) {
+    const double a = x.v.x[0], b = y.v.x[0];
+    const double p = a * b;
+    const double ta = 134217729.0 * a, tb = 134217729.0 * b;  // 2^27 + 1
+    const double ah = ta - (ta - a), bh = tb - (tb - b);
+    const double al = a - ah, bl = b - bh;
+    double e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    e += (a * y.v.x[1] + x.v.x[1] * b);
+    const double s = p + e;  // quick_two_sum(p, e)
+    return DD(dd_real(s, e - (s - p)));
+  }
 };
 
 // x - y exactly (the two-difference of two doubles).

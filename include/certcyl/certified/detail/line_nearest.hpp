@@ -37,6 +37,32 @@
 // unbounded exponent range, as in line_double_double.hpp) and below 2^20 2^404 2^122 < 2^996.
 // Round-to-nearest is required (checked with the leaves).
 //
+// Signs in double first. With g0^, g1^, c2^ the double-double values above (high parts h, low
+// parts l), each sign is first taken from v = fl(fl(g0h + fl(fl(fl(c2h H) + g1h) H)) + g0l)
+// (five operations in binary64). Its distance to p(m):
+//   |v - V| <= gamma_5 (|g0h| + |g0l| + (|g1h| + |c2h| |H|) |H|) + |g1l| |H| + |c2l| H^2,
+// V = g0^ + (g1^ + c2^ H) H in exact arithmetic (the standard bound of a program of depth 5,
+// gamma_5 = 5u / (1 - 5u) <= 6u, u = 2^-53, plus the low parts left out), and V is the
+// double-double program above with its last three operations exact, a special case of the
+// induction (each of its terms has at most five factors (1 + delta)), so |V - p(m)| is within
+// the coefficients' and rounding's bound above. The bound used is twice the sum of the two,
+// computed in double with M = |t0| + max(|H-|, |H+|) for both midpoints (the bound grows with M),
+// so at least 1.9 times |v - p(m)|; the sign of v is taken when |v| exceeds it. The products
+// are those of the double-double program (the exponent argument above applies; every term of
+// the bound is a multiple of 2^-968, a normal number or zero). A sign it leaves undecided is
+// evaluated in double-double as above. This replaces four double-double products an endpoint
+// by about twenty flops on all but about 2^-48 of the candidates.
+//
+// Near-tangent lines. A tangent point t = -b/a with b = 0 exactly (the sign of b from the
+// decision's adaptive signs, exact when it must be) is t = 0, rounded exactly. Where the
+// decision needed more than double (the line is near a tangency, a rim or a cap plane) and the
+// tube's roots lie so close to 0 and to each other that |p(m)| ~ |p'(t)| ulp(t) / 2 is below the
+// bound (the roots of a line tangent near its foot point: |p(m)| ~ 2^-100 against a bound of
+// about 2^-90 of the coefficients' magnitude), the proof cannot succeed and is not tried: an
+// estimate in plain double (approximate_tube of line_static_filter.hpp) of |p'(t)| ulp(t) below
+// an eighth of the estimated bound sends the endpoint straight to the exact rounding. The
+// estimate only chooses which proof runs; it never gives an answer.
+//
 // Candidate. t0 from the high parts (the stable quadratic formula, or -c0/c1), then Newton
 // steps t^ = t0 - g0 / g1 in double, re-expanding at t^ while it moves by more than 2^-40 |t0|
 // (at most three times). The candidate only has to be right for the proof to succeed; a wrong
@@ -45,8 +71,12 @@
 
 #include <qd/inline.h>
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <optional>
+#include <utility>
 
 #include "certcyl/certified/detail/line_double_double.hpp"
 #include "certcyl/certified/detail/line_shape.hpp"
@@ -82,20 +112,50 @@ class DDExpansion {
   // The Newton step from t0 (in double).
   double step() const { return -g0_.hi() / g1_.hi(); }
 
+  // The signs of p(t0 + H_lo) and p(t0 + H_hi): in double where that decides, else in
+  // double-double (header comment, "Signs in double first").
+  std::pair<CGAL::Sign, CGAL::Sign> signs_at(double H_lo, double H_hi) const {
+    const double e = half_bound(std::fabs(t0_) + std::max(std::fabs(H_lo), std::fabs(H_hi)));
+    CGAL::Sign lo = sign_in_double(H_lo, e), hi = sign_in_double(H_hi, e);
+    if (lo == CGAL::ZERO) lo = sign_at(H_lo);
+    if (hi == CGAL::ZERO) hi = sign_at(H_hi);
+    return {lo, hi};
+  }
+
+  // In double-double.
   CGAL::Sign sign_at(double H) const {
     const DD h(H);
     const DD v = p_.linear ? DD(g0_ + g1_ * h) : DD(g0_ + (g1_ + p_.c2 * h) * h);
-    const double M = std::fabs(t0_) + std::fabs(H);
-    constexpr double rounding = 6 * 0x1p-100;
-    const double coefficients = (p_.e2 * M + p_.e1) * M + p_.e0;
-    const double magnitude = (std::fabs(p_.c2.hi()) * M + std::fabs(p_.c1.hi())) * M + std::fabs(p_.c0.hi());
-    const double bound = 2 * (coefficients + rounding * magnitude);
+    const double bound = 2 * half_bound(std::fabs(t0_) + std::fabs(H));
     if (v.hi() > bound) return CGAL::POSITIVE;
     if (v.hi() < -bound) return CGAL::NEGATIVE;
     return CGAL::ZERO;
   }
 
  private:
+  // The coefficients' and the rounding's part of the bound at |m| <= M (before the factor 2).
+  double half_bound(double M) const {
+    constexpr double rounding = 6 * 0x1p-100;
+    const double coefficients = (p_.e2 * M + p_.e1) * M + p_.e0;
+    const double magnitude = (std::fabs(p_.c2.hi()) * M + std::fabs(p_.c1.hi())) * M + std::fabs(p_.c0.hi());
+    return coefficients + rounding * magnitude;
+  }
+
+  // From the double-double values' parts in binary64; e = half_bound(M) with M >= |t0| + |H|.
+  CGAL::Sign sign_in_double(double H, double e) const {
+    constexpr double gamma5 = 6 * 0x1p-53;
+    const double c2h = p_.c2.v.x[0], c2l = p_.c2.v.x[1];
+    const double g1h = g1_.v.x[0], g1l = g1_.v.x[1], g0h = g0_.v.x[0], g0l = g0_.v.x[1];
+    const double c2H = c2h * H, aH = std::fabs(H);
+    const double v = (g0h + (c2H + g1h) * H) + g0l;
+    const double local = gamma5 * (std::fabs(g0h) + std::fabs(g0l) + (std::fabs(g1h) + std::fabs(c2H)) * aH) +
+                         (std::fabs(g1l) + std::fabs(c2l) * aH) * aH;
+    const double bound = 2 * (e + local);
+    if (v > bound) return CGAL::POSITIVE;
+    if (v < -bound) return CGAL::NEGATIVE;
+    return CGAL::ZERO;
+  }
+
   const DDQuadratic& p_;
   double t0_;
   DD g0_, g1_;
@@ -104,6 +164,17 @@ class DDExpansion {
 inline bool in_parameter_window(double t) {
   const double m = std::fabs(t);
   return m >= 0x1p-60 && m <= 0x1p60;  // false for NaN
+}
+
+// Half the gaps from t to its neighbours below and above (t a nonzero normal double below the
+// largest: the neighbours are the adjacent encodings; the differences are exact, Sterbenz, and
+// so are the halvings, a gap being at least 2^-113 in the window).
+inline void half_gaps(double t, double& below, double& above) {
+  const auto bits = std::bit_cast<std::uint64_t>(t);
+  const double up = std::bit_cast<double>(bits + 1), down = std::bit_cast<double>(bits - 1);  // in magnitude
+  const double toward_plus = t > 0 ? up : down, toward_minus = t > 0 ? down : up;
+  below = (toward_minus - t) / 2;
+  above = (toward_plus - t) / 2;
 }
 
 // The double nearest to the root of p between the signs (lower, upper) at m- and m+ (for a
@@ -121,16 +192,23 @@ inline std::optional<double> nearest_root(const DDQuadratic& p, double t0, CGAL:
       continue;
     }
     // Half the gaps to the neighbours of t (exact: a gap is a power of two >= 2^-113).
-    const double below = (std::nextafter(t, -INFINITY) - t) / 2, above = (std::nextafter(t, INFINITY) - t) / 2;
+    double below = 0, above = 0;
+    half_gaps(t, below, above);
     double err_lo = 0, err_hi = 0;
     const double H_lo = qd::two_sum(dt, below, err_lo), H_hi = qd::two_sum(dt, above, err_hi);
     if (err_lo != 0 || err_hi != 0) return std::nullopt;
-    const CGAL::Sign s_lo = x.sign_at(H_lo), s_hi = x.sign_at(H_hi);
+    const auto [s_lo, s_hi] = x.signs_at(H_lo, H_hi);
     if (s_lo == CGAL::ZERO || s_hi == CGAL::ZERO || s_lo == s_hi) return std::nullopt;
     if (upper_sign != CGAL::ZERO && s_hi != upper_sign) return std::nullopt;
     return t;
   }
 }
+
+// A proved nearest double; `exact` when the endpoint is that double (0, 1, a tangent point at 0).
+struct ProvedNearest {
+  double nearest;
+  bool exact;
+};
 
 // The nearest doubles of a query's endpoints from its sign source (the double-double leaves
 // and the bounds of line_static_filter.hpp); the tube's coefficients are made once.
@@ -138,13 +216,24 @@ class LineNearest {
  public:
   explicit LineNearest(StaticCircularSigns& s) : leaves_(s.double_double_leaves()), signs_(s) {}
 
-  std::optional<double> operator()(BoundKind k, TubeState tube) {
+  std::optional<ProvedNearest> operator()(BoundKind k, TubeState tube) {
     switch (k) {
-      case BoundKind::range_lo: return 0.0;
-      case BoundKind::range_hi: return 1.0;
+      case BoundKind::range_lo: return ProvedNearest{0.0, true};
+      case BoundKind::range_hi: return ProvedNearest{1.0, true};
       default: break;
     }
     if (leaves_ == nullptr) return std::nullopt;
+    // A tangent point -b/a with b = 0 (header comment, "Near-tangent lines").
+    if (tube == TubeState::point && k != BoundKind::cap0 && k != BoundKind::cap1 && signs_.sign_b() == CGAL::ZERO)
+      return ProvedNearest{0.0, true};
+    if ((k == BoundKind::tube_lo || k == BoundKind::tube_hi) && tube == TubeState::interval && hopeless_tube()) return std::nullopt;
+    const std::optional<double> t = proved(k, tube);
+    if (!t) return std::nullopt;
+    return ProvedNearest{*t, false};
+  }
+
+ private:
+  std::optional<double> proved(BoundKind k, TubeState tube) {
     const CircularLeaves<DD>& l = *leaves_;
     namespace b = line_dd_bounds;
     using Q = CircularPolynomials<DD>;
@@ -180,7 +269,28 @@ class LineNearest {
     return nearest_root(q, t0, upper ? CGAL::POSITIVE : CGAL::NEGATIVE);
   }
 
- private:
+  // Whether the tube roots' proof cannot succeed (header comment, "Near-tangent lines"): only
+  // after a decision that needed more than double; an estimate, never a sign.
+  bool hopeless_tube() {
+    if (!hopeless_) hopeless_ = estimate_hopeless();
+    return *hopeless_;
+  }
+  bool estimate_hopeless() const {
+    if (signs_.depth() == StaticCircularSigns::Depth::binary64) return false;
+    double a = 0, b = 0, c = 0;
+    signs_.approximate_tube(a, b, c);
+    if (!(a > 0)) return false;
+    // |p'(t)| = 2 sqrt(b^2 - a c) at either root, with room for the double's cancellation.
+    const double disc = b * b - a * c, slack = 0x1p-48 * (b * b + std::fabs(a * c));
+    const double slope = 2 * std::sqrt(std::max(disc, 0.0) + slack);
+    const double t = (std::fabs(b) + std::sqrt(std::max(disc, 0.0) + slack)) / a;  // at least either root's size
+    namespace bd = line_dd_bounds;
+    const double e2 = signs_.dd_bound_value(bd::a), e1 = 2 * signs_.dd_bound_value(bd::b), e0 = signs_.dd_bound_value(bd::excess);
+    const double bound = 2 * ((e2 * t + e1) * t + e0);
+    const double change = slope * t * 0x1p-52;  // |p'(t)| times the gap above |t|, at least
+    return 8 * change < bound;
+  }
+
   // a, 2b and c (header comment), with u = w x A and v = d x A shared: the same programs as
   // CircularPolynomials a, b and excess, so their bounds apply.
   void make_tube() {
@@ -200,6 +310,7 @@ class LineNearest {
   const CircularLeaves<DD>* leaves_;
   StaticCircularSigns& signs_;
   std::optional<DDQuadratic> tube_;
+  std::optional<bool> hopeless_;
 };
 
 }  // namespace certcyl::detail

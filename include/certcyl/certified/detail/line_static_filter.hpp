@@ -312,6 +312,18 @@ class StaticCircularSigns {
   CGAL::Sign sign_sw() { return sign(kSw); }
   // H - sw = A.A - w.A = -(w1.A)
   CGAL::Sign sign_H_minus_sw() { return CGAL::opposite(sign(kSw1)); }
+  // b = (w x A).(d x A): minus the sign of the tube's centre -b/a (a > 0)
+  CGAL::Sign sign_b() { return sign(kB); }
+
+  // The tube's a, b and c in plain double from the double leaves, without an error bound: an
+  // estimate for deciding which proof to try, never for a sign.
+  void approximate_tube(double& a, double& b, double& c) const {
+    using Q = CircularPolynomials<double>;
+    const CircularLeaves<double>& l = leaves_;
+    a = Q::a(l.A, l.d);
+    b = Q::b(l.A, l.w, l.d);
+    c = Q::excess(l.A, l.w, l.r);
+  }
 
   // Bounds are compared by this object itself once the tube and slab states are known.
   StaticCircularSigns& bounds(TubeState tube, SlabState) {
@@ -461,7 +473,7 @@ class StaticCircularSigns {
   }
 
   void make_dd_leaves() {
-    dd_ = make_leaves<DD>(dd_difference);
+    dd_ = make_leaves<DD>([](double x, double y) { return dd_difference(x, y); });
     auto in = [](const Vec3<double>& p) {
       return in_double_double_window(p.x) && in_double_double_window(p.y) && in_double_double_window(p.z);
     };
