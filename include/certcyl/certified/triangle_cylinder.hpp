@@ -18,10 +18,12 @@
 //       a semi-static double filter (detail/triangle_static_filter.hpp: each sign decided in
 //       double when it exceeds an error bound derived from its expression tree; binary64 input,
 //       or Rational input whose numbers are all binary64) in which each sign the double bound
-//       leaves undecided is evaluated again, that test alone, in double-double with bounds
-//       from the same trees (detail/triangle_double_double.hpp; binary64 input of magnitudes 0
-//       or 2^-24 .. 2^60; the whole decision in double-double where the double stage's range
-//       is left), then Interval_nt, then exact arithmetic (Mpzf for
+//       leaves undecided is evaluated again, that test alone, with proved bounds
+//       (detail/triangle_double_double.hpp; binary64 input of magnitudes 0 or 2^-24 .. 2^60):
+//       a test on a crossing with a cap plane through its form in the vertices' values (those
+//       values in double, then in double-double where needed), any test in double-double on
+//       its own tree; the whole decision in double-double where the double stage's range is
+//       left), then Interval_nt, then exact arithmetic (Mpzf for
 //       binary64 input, Gmpq otherwise). A TriangleFilterStages counter
 //       records which stage decided; a FilterCounter counts the exact fall-backs.
 //   certified_triangle_cylinder(T, C)           the answer (filtered, as above) and its
