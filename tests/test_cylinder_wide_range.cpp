@@ -76,6 +76,31 @@ BOOST_AUTO_TEST_CASE(corner_candidates_decide_huge_against_tiny_pairs) {
   BOOST_TEST(checked >= 100);
 }
 
+// Exactly touching wide-range pairs are proved touching right after the corner candidates' first
+// 1,024 bits (ellipsoid_probe): no Gmpfr round, no ellipsoid step, and no corner plane above
+// 1,024 bits can decide a touching pair, so none runs. Before, every such pair spanning over
+// 256 binades paid for the candidates up to 4,096 bits and 48 ellipsoid steps first (up to
+// 35 ms a query at 2^900 against 2^-900).
+BOOST_AUTO_TEST_CASE(touching_wide_range_pairs_are_proved_before_the_high_precisions) {
+  int checked = 0;
+  for (const WideCase& c : wide_range_cases()) {
+    if (c.expected != Answer::touching) continue;
+    for (const bool swap : {false, true}) {
+      const Cylinder<Q>& a = swap ? c.b : c.a;
+      const Cylinder<Q>& b = swap ? c.a : c.b;
+      const certcyl::CylinderCylinderResult r = certcyl::certified_cylinder_cylinder(a, b);
+      ++checked;
+      BOOST_TEST_CONTEXT(c.name << (swap ? " swapped" : "") << ": stage " << certcyl::to_string(r.stage)) {
+        BOOST_TEST(r.answer == Answer::touching);
+        BOOST_TEST((r.stage == certcyl::CylinderStage::touching_exact));
+        BOOST_TEST(r.gmpfr_precision == 0);
+        BOOST_TEST(r.counters.ellipsoid_steps == 0u);
+      }
+    }
+  }
+  BOOST_TEST(checked >= 100);
+}
+
 // The other certified queries on the same operands: the line, ray and segment along b's axis
 // and the triangle (b.p0, b.p1, a.p0) against a (a degenerate triangle is valid input). They
 // must decide. The axis segment of b lies in b, and its points other than the ends are

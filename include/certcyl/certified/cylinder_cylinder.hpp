@@ -419,7 +419,7 @@ class CylinderCylinderSolver {
     if (optimiser()) return finish();
     if (options_.refine && refine()) return finish();
     if (options_.prove_touching && ellipsoid_probe()) return finish();
-    if (options_.prove_touching && touching_exact()) return finish();
+    if (options_.prove_touching && !touching_tried_ && touching_exact()) return finish();
     if (arbitrary_precision()) return finish();
     result_.stage = CylinderStage::none;
     return finish();
@@ -1221,6 +1221,7 @@ class CylinderCylinderSolver {
   }
 
   bool touching_exact() {
+    touching_tried_ = true;
     begin(CylinderStage::touching_exact);
     if (ring()) return touching_exact_ring() || pass();
     const CylinderPair<Rational>& e = exact();
@@ -1261,6 +1262,8 @@ class CylinderCylinderSolver {
   // r1 d / (r0 + r1) < r1 from axis 1 when d < r0 + r1, and c1 - c0, orthogonal to both axes,
   // separates when d > r0 + r1.
   bool exact_candidates() {
+    if (exact_candidates_tried_) return false;
+    exact_candidates_tried_ = true;
     const CylinderPair<Rational>& e = exact();
     if (!(e.T.x == 0 && e.T.y == 0 && e.T.z == 0) && exact_separates(e.T)) return true;
     for (const Vec3<Rational>& D : structural_directions(e))
@@ -1281,19 +1284,23 @@ class CylinderCylinderSolver {
   // wedge; then again in the plane through j's support point there (near the contact, where the
   // plane's only error, the curvature of i's rim over j's distance from the plane, is smallest).
   // The quantities are reduced exactly to the contact's scale; the precision starts at 192 bits
-  // and rises to what the gain found needs against its terms (at most 4,096 bits; the best
-  // direction is found in closed form, a few evaluations at any precision). The next plane goes
-  // through the witness found, else through the support point: up to six planes, more while each
-  // gives a witness (the planes through witnesses on a face of j's support converge, as Newton's
+  // and rises to what the gain found needs against its terms, or doubles when the gain rounds to
+  // zero (at most `max_precision`; the best direction is found in closed form, a few evaluations
+  // at any precision). The next plane goes through the witness found, else through the support
+  // point: up to six planes, more while each gives a witness (the planes through witnesses on a face of j's support converge, as Newton's
   // method on i's rim circle, to where that face crosses the rim, and the wedge's curvature error
   // with them). They decide pairs of a huge and a tiny cylinder (2^900 against 2^-900), needles
   // against pancakes, and slivers at a rim or a cap (common interiors 2^-800 thin), whose
   // separating directions or common interior are far too narrow for the rounded optimiser below
-  // thousands of bits. Each candidate is checked exactly. Tried once per query.
-  bool corner_candidates() {
-    if (corner_tried_) return false;
-    corner_tried_ = true;
-    constexpr long first_precision = 192, max_precision = 4096;
+  // thousands of bits. Each candidate is checked exactly. Tried once per query and cap: a call
+  // with a higher cap than the last goes on where the last cap stopped a cylinder's planes, and
+  // skips the cylinder whose planes it did not stop (they would take the same path again).
+  static constexpr long kCornerFirstCap = 1024, kCornerMaxPrecision = 4096;
+  bool corner_candidates(long max_precision) {
+    if (corner_cap_ >= max_precision) return false;
+    const bool first_call = corner_cap_ == 0;
+    corner_cap_ = max_precision;
+    constexpr long first_precision = 192;
     constexpr int max_passes = 12;
     const CylinderPair<Rational>& e = exact();
     const int larger = e.AA0 + 4 * e.c0.radius * e.c0.radius >= e.AA1 + 4 * e.c1.radius * e.c1.radius ? 0 : 1;
@@ -1302,7 +1309,17 @@ class CylinderCylinderSolver {
       const Cylinder<Rational>& cj = i == 0 ? e.c1 : e.c0;
       Point3<Rational> y = cj.p0 + cj.axis() / Rational(2);
       long precision = first_precision;
-      for (int pass = 0; pass < max_passes; ++pass) {
+      int first_pass = 0;
+      if (!first_call) {
+        // Planes whose run the last cap did not stop would take the same path again.
+        if (!corner_resume_[i]) continue;
+        const CornerResume& r = *corner_resume_[i];
+        y = r.y;
+        first_pass = r.pass + 1;
+        precision = std::min(max_precision, std::max(2 * r.precision, r.needed));
+        corner_resume_[i].reset();
+      }
+      for (int pass = first_pass; pass < max_passes; ++pass) {
         std::optional<Vec3<Rational>> D;
         std::optional<Point3<Rational>> X;
         Point3<Rational> next;
@@ -1312,7 +1329,9 @@ class CylinderCylinderSolver {
           const CornerPlane plane = CornerPlane::make(ci, cj, y);
           const CGAL::Gmpfr t = plane.best();
           const CGAL::Gmpfr g = plane.gain(t);
-          needed = plane.bits_to_resolve(t, g);
+          // A gain rounded to zero says only that this precision is short: double it (rather
+          // than jump to the cap, which made every later plane cost 4,096-bit products).
+          needed = g == 0 ? 2 * precision : plane.bits_to_resolve(t, g);
           if (g > 0) {
             D = plane.direction(t);
           } else if (g < 0) {
@@ -1327,6 +1346,10 @@ class CylinderCylinderSolver {
         if (needed > precision && precision < max_precision) {
           precision = std::min(max_precision, std::max(2 * precision, needed));
           continue;  // the same plane, more bits
+        }
+        if (needed > precision && max_precision < kCornerMaxPrecision) {
+          corner_resume_[i] = CornerResume{y, pass, precision, needed};  // a higher cap goes on from here
+          break;
         }
         if (next == y || (pass >= 5 && !X)) break;  // beyond six planes only while witnesses come
         y = next;
@@ -1477,7 +1500,7 @@ class CylinderCylinderSolver {
   bool arbitrary_precision() {
     begin(CylinderStage::gmpfr);
     if (options_.max_precision < 0) return pass();
-    if (exact_candidates() || corner_candidates()) return true;
+    if (exact_candidates() || corner_candidates(kCornerMaxPrecision)) return true;
     const long span = input_span_bits();
     const long heuristic_limit = options_.max_precision > 0 ? options_.max_precision : 4 * span + 1024;
     long first = 128;
@@ -1568,19 +1591,30 @@ class CylinderCylinderSolver {
     direction_problem_.emplace(*integer_, fitted);
   }
 
-  // Before the touching proofs, for input spanning over 256 binades: the corner candidates (stage
-  // gmpfr, see corner_candidates), then short fast runs of the point and direction searches (128
-  // bits, 24 steps each) in the frames of the pair's slab and tube bounds
-  // (detail/cylinder_ellipsoid.hpp). A needle crossing a pancake overlaps in a region those
-  // frames make fat, and a needle's separating directions form a set they make fat: the runs
-  // find a certificate in a few steps, where the touching and Gmpfr stages would spend tens or
-  // hundreds of milliseconds. A touching pair costs the corner candidates and the 48 steps.
+  // Before the touching and Gmpfr stages, for input spanning over 256 binades, in this order:
+  // 1. the exact candidates (they decide crossing walls at any distance from touching, cheaply)
+  //    and the corner candidates up to 1,024 bits (stage gmpfr; see both);
+  // 2. when the pair has a ring frame, the touching proofs (stage touching_exact);
+  // 3. the corner candidates up to 4,096 bits, from where 1,024 stopped them;
+  // 4. short fast runs of the point and direction searches (128 bits, 24 steps each) in the
+  //    frames of the pair's slab and tube bounds (detail/cylinder_ellipsoid.hpp). A needle
+  //    crossing a pancake overlaps in a region those frames make fat, and a needle's separating
+  //    directions form a set they make fat: the runs find a certificate in a few steps, where
+  //    the Gmpfr stage would spend tens or hundreds of milliseconds.
+  // Steps 3 and 4 cannot decide a touching pair, so its proofs come before them: a touching
+  // pair costs the candidates to 1,024 bits and its proof, and a sliver (an overlap or gap 2^-800
+  // thin, for which the candidates need up to 3,000 bits) pays for failed touching proofs. In
+  // Gmpq (no ring frame) the rim-contact proofs of a pair spanning 2,000 binades cost several
+  // times the candidates (their gcds), so there they keep their place after step 4.
   bool ellipsoid_probe() {
     if (input_span_bits() <= 256) return false;
     const CylinderPair<Rational>& e = exact();
     if (e.T.x == 0 && e.T.y == 0 && e.T.z == 0) return false;
     begin(CylinderStage::gmpfr);
-    if (corner_candidates()) return true;
+    if (exact_candidates() || corner_candidates(kCornerFirstCap)) return true;
+    if (ring() && touching_exact()) return true;
+    begin(CylinderStage::gmpfr);
+    if (corner_candidates(kCornerMaxPrecision)) return true;
     switch_stage(CylinderStage::ellipsoid);
     result_.ellipsoid_precision = 128;
     ellipsoid_problems();
@@ -1657,7 +1691,15 @@ class CylinderCylinderSolver {
   std::optional<std::array<Rational, 2>> direction_start_;
   std::optional<RingFrame> ring_;  // ring()
   bool ring_tried_ = false;
-  bool corner_tried_ = false;  // corner_candidates() ran
+  long corner_cap_ = 0;          // the highest precision cap corner_candidates() ran with
+  struct CornerResume {          // where that cap stopped the planes of cylinder i
+    Point3<Rational> y;
+    int pass;
+    long precision, needed;
+  };
+  std::array<std::optional<CornerResume>, 2> corner_resume_;
+  bool touching_tried_ = false;  // touching_exact() ran
+  bool exact_candidates_tried_ = false;
   std::optional<CylinderPair<dd_real>> dd_pair_;  // world_pair<dd_real>() of rational input
   std::optional<Vec3<double>> optimum_;
   std::optional<Point3<double>> optimum_point_;

@@ -62,16 +62,18 @@ class CornerPlane {
   // cylinder j. Call inside a GmpfrPrecision scope (it sets the precision of every number here).
   static CornerPlane make(const Cylinder<Rational>& ci, const Cylinder<Rational>& cj, const Point3<Rational>& y) {
     const Vec3<Rational> A = ci.axis(), Aj = cj.axis();
+    // w is (A.A) times the part of y - p0 orthogonal to A: no division, so dyadic input keeps
+    // dyadic numbers (Gmpq's gcds stay trivial) and only its direction matters below.
     const Rational AA = dot(A, A);
-    const Rational t = dot(y - ci.p0, A) / AA;
-    Vec3<Rational> w = (y - ci.p0) - t * A;
+    const Rational along = dot(y - ci.p0, A);
+    Vec3<Rational> w = AA * (y - ci.p0) - along * A;
     if (w == Vec3<Rational>{0, 0, 0}) {
       const Rational ax = CGAL::abs(A.x), ay = CGAL::abs(A.y), az = CGAL::abs(A.z);
       const Vec3<Rational> k = ax <= ay && ax <= az ? Vec3<Rational>{1, 0, 0} : ay <= az ? Vec3<Rational>{0, 1, 0} : Vec3<Rational>{0, 0, 1};
-      w = k - (dot(k, A) / AA) * A;
+      w = AA * k - dot(k, A) * A;
     }
     const Rational ww = dot(w, w);
-    const bool far_end = 2 * t >= 1;
+    const bool far_end = 2 * along >= AA;
     CornerPlane c;
     c.p0_ = ci.p0;
     c.AA_ = AA;
@@ -86,6 +88,7 @@ class CornerPlane {
     c.E_ = {cj.p0, cj.p1};
     c.Aj_exact_ = Aj;
     c.AAj_ = dot(Aj, Aj);
+    c.inv_AAj_ = to_rational(k(1) / f(c.AAj_));
     for (int e = 0; e < 2; ++e) c.local(c.E_[e], c.ca_[e], c.cr_[e]);
     c.jj_ = f(c.AAj_);
     c.rj_ = f(cj.radius);
@@ -174,9 +177,10 @@ class CornerPlane {
     if (pp > 0) {
       const Vec3<F> offset = p * (-rj_ / CGAL::sqrt(pp));
       // Exactly in the plane of the end disc (near a face, p is small and its rounding tilts it).
-      Vec3<Rational> o = offset.map([](const F& x) { return to_rational(x); });
-      o = o - (dot(o, Aj_exact_) / AAj_) * Aj_exact_;
-      s.x = E_[end] + o;
+      // (A_j.A_j) o - (o.A_j) A_j is exactly orthogonal to A_j; times a dyadic 1 / A_j.A_j (its
+      // length is rounded anyway) it stays so, without a division.
+      const Vec3<Rational> o = offset.map([](const F& x) { return to_rational(x); });
+      s.x = E_[end] + inv_AAj_ * (AAj_ * o - dot(o, Aj_exact_) * Aj_exact_);
       local(s.x, s.xu, s.xe);
     }
     return s;
@@ -243,7 +247,7 @@ class CornerPlane {
     const Rational rho_w = dot(v, radial_);  // rho |w|
     if (rho_w > 0) {
       const F rho = f(rho_w) * inv_radial_;
-      xe = f(rho_w * rho_w / ww_ - R_ * R_) / (rho + Rf_);
+      xe = f(rho_w * rho_w - R_ * R_ * ww_) / f(ww_) / (rho + Rf_);
     } else {
       xe = f(rho_w) * inv_radial_ - Rf_;
     }
@@ -258,7 +262,7 @@ class CornerPlane {
   }
 
   Point3<Rational> p0_;
-  Rational AA_, ww_, R_, AAj_;
+  Rational AA_, ww_, R_, AAj_, inv_AAj_;  // inv_AAj_: 1 / A_j.A_j rounded (dyadic)
   Vec3<Rational> Aj_exact_;
   bool far_end_ = false;
   Vec3<Rational> axial_, radial_;  // s A and w
