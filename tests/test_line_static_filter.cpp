@@ -854,3 +854,46 @@ BOOST_AUTO_TEST_CASE(endpoint_on_and_near_a_midpoint) {
     }
   }
 }
+
+// Lines tangent to an axis-aligned cylinder at their own origin, and moved off it by 1..4 ulps
+// of the offset (the benchmark's near-tangent family): the origin is the foot of the
+// perpendicular, so b = 0 and the roots are 0 (tangent) or about +-2^-25 (a chord of a few
+// ulps' depth), where |p| at the midpoints (about 2^-100) is below the double-double bound.
+//   x = p0.x + r (+- ulps), y = p0.y + t, z = p0.z + 1/2 + t dz;  axis p0 + (0, 0, s)
+// b = 0 exactly ((w x A).(d x A) with w x A along y, d x A along x). Every endpoint as
+// above; a tangent point (touching: t = 0) is proved by the sign of b alone: it
+// keeps its source (rounded without the exact value) and is rounded exactly.
+BOOST_AUTO_TEST_CASE(endpoint_nearest_doubles_tangent_at_the_foot_point) {
+  std::mt19937_64 rng(101);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto rv = [&] { return Vec3<double>{u(rng), u(rng), u(rng)}; };
+  NearestStats st;
+  long tangent_points = 0;
+  for (int i = 0; i < 400; ++i) {
+    const Vec3<double> p0 = rv();
+    const double r = 0.25 + std::fabs(u(rng));
+    double off = r;
+    for (int k = 0; k < i % 5; ++k) off = std::nextafter(off, i % 2 ? 2.0 : 0.0);
+    Query x;
+    x.cyl = {p0, {p0.x, p0.y, p0.z + 1}, r};
+    x.origin = {p0.x + off, p0.y, p0.z + 0.5};
+    x.second = {0, 1, 0.5 * u(rng)};
+    BOOST_TEST_CONTEXT("#" << i << " moved " << i % 5 << " ulps") {
+      check_endpoints(x, st);
+      const CertifiedLineResult r = certified(x);
+      if (r.answer == Answer::touching) {  // tangent (the origin's x is rounded: not every i % 5 = 0)
+        BOOST_REQUIRE(r.in && r.out);
+        for (const CertifiedEndpoint* e : {&*r.in, &*r.out}) {
+          ++tangent_points;
+          BOOST_TEST(e->nearest == 0.0);
+          BOOST_TEST(e->value().to_string() == "0");
+          BOOST_TEST(to_string(e->rounding) == "exact_rational");
+          BOOST_TEST(e->source() != nullptr);  // not through the exact quadric
+        }
+      }
+    }
+  }
+  print("tangent at the foot point", st);
+  std::cout << "  tangent points: " << tangent_points << "\n";
+  BOOST_TEST(tangent_points > 40);
+}
