@@ -81,9 +81,37 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
       method = plugin->name;
     }
     if (!o.label.empty()) method = o.label;
+
+    // The failure maps, by the same exchange; what the exchange answered is kept whatever fails.
+    std::optional<MapsResult> maps;
+    std::optional<HuntResult> hunt;
+    const int map_cells = o.map_cells < 0 ? map_cells_of_size(o.spec.size) : o.map_cells;
+    if (map_cells > 0) {
+      maps.emplace();
+      if (sharded) {
+        maps->note = "a shard does not draw them (judge unsharded to draw them)";
+      } else if (!o.answers_file.empty()) {
+        maps->note = "they need --plugin or --exec (an answers file holds no answers for the maps' inputs)";
+      } else if (!answers.failure.empty()) {
+        maps->note = "not drawn, the method having failed on the cases";
+      } else {
+        std::vector<study::Query> queries;
+        for (const Case& c : cases)
+          if (std::find(queries.begin(), queries.end(), c.query) == queries.end()) queries.push_back(c.query);
+        AnswerSource source;
+        if (!o.exec_command.empty())
+          source = [&](const std::vector<Case>& cells) { return run_exec(o.exec_command, cells, timeout); };
+        else
+          source = [&](const std::vector<Case>& cells) { return run_plugin(o.plugin_file, cells, timeout); };
+        *maps = judge_failure_maps(sharded ? partial : folder, method, queries, source, map_cells, o.map_step, o.spec.seed,
+                                   std::max(1u, o.spec.threads));
+        const long evaluations = o.hunt_evaluations < 0 ? hunt_evaluations_of_size(o.spec.size) : o.hunt_evaluations;
+        if (evaluations > 0) hunt = judge_hunt(folder, method, queries, source, evaluations, o.spec.seed);
+      }
+    }
     // A complete shard is renamed from its temporary name below: the printed paths name the result.
     const fs::path written = sharded ? partial : folder;
-    write_results(written, sharded && answers.failure.empty() ? shard_folder : written, method, cases, answers, out);
+    write_results(written, sharded && answers.failure.empty() ? shard_folder : written, method, cases, answers, out, maps ? &*maps : nullptr, hunt ? &*hunt : nullptr);
     out.flush();
     if (!answers.failure.empty()) {
       err << "certcyl judge: " << answers.failure << '\n';

@@ -9,6 +9,10 @@
 // A program or plugin that gives no answer for `timeout_seconds` is killed (its whole process
 // group for --exec) and the run ends as on any failure, with the answers before it kept.
 //
+// With --plugin or --exec the method is also judged on the study's failure maps around every
+// degeneracy of the judged queries (results/<name>/failure_maps/, as the study writes them, and
+// failure_maps.csv); an answers file has no answers for them.
+//
 // A shard i of n judges the cases whose index (in the cases' order) is i modulo n into
 // results/<name>/shard-i-of-n: written as shard-i-of-n.partial and renamed when every case of
 // the shard is judged, so a folder by the final name is always a finished shard. Its
@@ -34,6 +38,14 @@ struct JudgeOptions {
   std::string label;             // the method's name in the results; empty: from the source
   double timeout_seconds = 60;   // --timeout; 0: no limit
   int shard_index = 0, shard_count = 1;
+  // The failure maps (judge_maps.cpp; --plugin and --exec, unsharded runs): map_cells x
+  // map_cells inputs map_step ulps apart around each degeneracy of the judged queries; -1: the
+  // size's (16 for tiny, 32 small, 64 default, 128 large), 0: none.
+  int map_cells = -1;
+  long map_step = 1;
+  // The hunt for the worst input (with the maps): evaluations per query (a quarter for cylinder
+  // pairs); -1: the size's (20 tiny, 150 small, 1000 default, 5000 large), 0: none.
+  long hunt_evaluations = -1;
 };
 
 // Runs the command; returns 0 when every case was judged, 1 otherwise (the error on `err`; what

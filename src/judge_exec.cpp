@@ -252,6 +252,7 @@ Answers run_exec(const std::string& command, const std::vector<Case>& cases, con
     ::close(to_child[0]), ::close(to_child[1]);
     throw std::runtime_error(std::string("--exec: pipe: ") + std::strerror(errno));
   }
+  const auto start = std::chrono::steady_clock::now();
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error(std::string("--exec: fork: ") + std::strerror(errno));
   if (pid == 0) {
@@ -314,6 +315,10 @@ Answers run_exec(const std::string& command, const std::vector<Case>& cases, con
                        excerpt(text);
       break;
     }
+  }
+  if (n == cases.size() && result.failure.empty() && n > 0) {
+    result.ns_per_query = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count() / static_cast<double>(n);
+    result.timing = "per query including the exchange (the program's start, writing the query lines, reading its answers), over all the cases";
   }
   bool silent = false;  // every line answered, but the output neither ended nor went on
   if (result.failure.empty() && n == cases.size()) {

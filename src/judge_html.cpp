@@ -477,6 +477,40 @@ std::string rate_cells(const FamilyJudgement& r) {
 
 }  // namespace
 
+// The colours of a failure map's cells by code (none is the drawings' blue or red).
+const char* map_colour(char code) {
+  switch (code) {
+    case 's': return "#e4e4e4";
+    case 't': return "#f2b33d";
+    case 'o': return "#3f9e6e";
+    case 'i': return "#7fc79f";
+    case 'u': return "#f7ef8a";
+    case 'e': return "#303030";
+    default: return "#ffffff";
+  }
+}
+const char* const kWrong = "#e000e0";
+
+// One panel of a failure map as an <svg>: a cell per input (row i down, column j across), the
+// centre cell (the degenerate configuration) outlined; with `wrong`, the wrong cells magenta.
+std::string map_panel(const MapJudgement& m, const std::string& codes, const std::vector<bool>* wrong, const std::string& title) {
+  const int n = m.cells;
+  const double cell = std::max(3.0, std::min(12.0, 240.0 / n)), side = cell * n;
+  std::ostringstream o;
+  o << "<svg class=\"map\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" << fmt("%.0f", side) << "\" height=\"" << fmt("%.0f", side)
+    << "\" viewBox=\"0 0 " << fmt("%.1f", side) << ' ' << fmt("%.1f", side) << "\" role=\"img\"><title>" << escape(title) << "</title>";
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < n; ++k) {
+      const std::size_t c = static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(k);
+      const char* fill = wrong && (*wrong)[c] ? kWrong : map_colour(codes[c]);
+      o << "<rect x=\"" << fmt("%.1f", k * cell) << "\" y=\"" << fmt("%.1f", i * cell) << "\" width=\"" << fmt("%.1f", cell)
+        << "\" height=\"" << fmt("%.1f", cell) << "\" fill=\"" << fill << "\"/>";
+    }
+  o << "<rect x=\"" << fmt("%.1f", (n / 2) * cell) << "\" y=\"" << fmt("%.1f", (n / 2) * cell) << "\" width=\"" << fmt("%.1f", cell)
+    << "\" height=\"" << fmt("%.1f", cell) << "\" fill=\"none\" stroke=\"#000\" stroke-width=\"1\"/></svg>";
+  return o.str();
+}
+
 void write_report_page(const std::filesystem::path& file, const Judgement& j) {
   std::ostringstream h;
   h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>certcyl judge: " << escape(j.method)
@@ -490,10 +524,15 @@ void write_report_page(const std::filesystem::path& file, const Judgement& j) {
     << " certified cases (" << j.judged << " of " << j.cases << " cases judged)";
   if (certified > 0) h << ": " << percent(static_cast<double>(failures) / static_cast<double>(certified)) << " of the answers are wrong";
   h << ".</p>\n";
+  if (std::isfinite(j.ns_per_query))
+    h << "<p id=\"speed\">Speed: <b>" << fmt("%.1f", j.ns_per_query) << " ns per query</b>, " << escape(j.timing)
+      << ". <a href=\"speed.csv\">speed.csv</a> holds it per query in the columns of the study's summary.csv (kind "
+         "<i>judged</i>), to draw it on the study's speed-against-error figure beside the built-in methods.</p>\n";
   if (!j.failure.empty())
     h << "<p><b>Not every case was judged:</b> " << escape(j.failure) << ". The counts below are of the cases judged before.</p>\n";
   h << "<p>Contents: <a href=\"#tested\">what was tested</a>, <a href=\"#families\">failure rate per family</a>, "
-       "<a href=\"#counterexamples\">counterexamples</a>, <a href=\"#files\">files</a>.</p>\n";
+       "<a href=\"#counterexamples\">counterexamples</a>, "
+    << (j.maps ? "<a href=\"#maps\">failure maps</a>, " : "") << "<a href=\"#files\">files</a>.</p>\n";
 
   // What was tested.
   h << "<h2 id=\"tested\">What was tested</h2>\n<p>The method <code>" << escape(j.method)
@@ -576,6 +615,49 @@ void write_report_page(const std::filesystem::path& file, const Judgement& j) {
       << escape(gap_text(c)) << "</td></tr><tr><th>drawing width</th><td>" << fmt("%.3g", width) << " (the "
       << operand_name(c.query) << " red, the cylinder blue)</td></tr></table>\n<pre>"
       << escape(query_line(c).dump()) << "</pre></figcaption>\n</figure>\n";
+  }
+
+  // The failure maps.
+  if (j.maps) {
+    const MapsResult& maps = *j.maps;
+    h << "<h2 id=\"maps\">Failure maps</h2>\n";
+    if (maps.maps.empty()) {
+      h << "<p>None: " << escape(maps.note) << ".</p>\n";
+    } else {
+      h << "<p>The grids of certcyl's study around one degenerate configuration of each query: the configuration at the "
+           "centre cell (outlined), two of its coordinates moved by whole units in the last place across the grid (rows the "
+           "first, columns the second). Left the certified answer, right the method's: <span class=\"key\" style=\"background:"
+        << map_colour('s') << "\"></span> separated, <span class=\"key\" style=\"background:" << map_colour('t')
+        << "\"></span> touching, <span class=\"key\" style=\"background:" << map_colour('o')
+        << "\"></span> overlapping, <span class=\"key\" style=\"background:" << map_colour('i')
+        << "\"></span> intersecting, <span class=\"key\" style=\"background:" << map_colour('u')
+        << "\"></span> undecided, <span class=\"key\" style=\"background:" << map_colour('e')
+        << "\"></span> error, <span class=\"key\" style=\"background:" << kWrong
+        << "\"></span> wrong (a false positive or negative), white not evaluated. Each map's cells are in "
+           "<code>failure_maps/&lt;name&gt;.csv</code> (the study's format), the counts in "
+           "<a href=\"failure_maps.csv\">failure_maps.csv</a>.</p>\n";
+      if (!maps.failure.empty()) h << "<p><b>The method failed on the way:</b> " << escape(maps.failure) << ".</p>\n";
+      for (const MapJudgement& m : maps.maps) {
+        const std::size_t wrong = m.false_positive + m.false_negative;
+        h << "<figure class=\"failure-map\" id=\"map-" << escape(m.name) << "\">\n<div>"
+          << map_panel(m, m.certified, nullptr, m.name + ": the certified answers") << ' '
+          << map_panel(m, m.codes, &m.wrong, m.name + ": the method's answers, wrong cells marked") << "</div>\n<figcaption><b>"
+          << escape(m.name) << "</b> (<code>" << escape(m.query) << "</code>): " << escape(m.description) << "; " << m.cells << " x "
+          << m.cells << " cells " << m.step << " ulp apart. <b>" << wrong << " wrong</b> of " << m.evaluated
+          << " cells evaluated (" << m.false_positive << " false positive" << (m.false_positive == 1 ? "" : "s") << ", "
+          << m.false_negative << " false negative" << (m.false_negative == 1 ? "" : "s") << "). <a href=\"failure_maps/"
+          << escape(m.name) << ".csv\">" << escape(m.name) << ".csv</a></figcaption>\n</figure>\n";
+      }
+    }
+  }
+
+  if (j.hunt) {
+    h << "<h2 id=\"hunt\">Worst input found</h2>\n<p>The study's hunt (<a href=\"hunt.csv\">hunt.csv</a>): from the "
+         "degenerate configurations of each query's families, a search over ulp moves of single coordinates that keeps the "
+         "method wrong while moving the input as far from a change of answer as it can (the certified gap's lower bound).</p>\n<ul>\n";
+    for (const std::string& l : j.hunt->lines) h << "<li class=\"hunt\">" << escape(hunt_text(l)) << "</li>\n";
+    h << "</ul>\n";
+    if (!j.hunt->failure.empty()) h << "<p><b>The hunt ended early:</b> " << escape(j.hunt->failure) << ".</p>\n";
   }
 
   h << "<h2 id=\"files\">Files</h2>\n<ul>\n"

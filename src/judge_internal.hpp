@@ -13,10 +13,13 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <istream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <ostream>
@@ -41,6 +44,10 @@ struct Answered {
 struct Answers {
   std::vector<std::optional<Answered>> answers;
   std::string failure;
+  // The method's time per query when every case was answered (NaN otherwise), and what it
+  // measures: a plugin's calls timed in its child process, a program's exchange as a whole.
+  double ns_per_query = std::numeric_limits<double>::quiet_NaN();
+  std::string timing;
 };
 
 // The study's reading of an answer: separated, touching, overlapping (three-valued),
@@ -116,6 +123,54 @@ PluginInfo inspect_plugin(const std::string& path);
 // The child is killed when one call gives no answer within `timeout`.
 Answers run_plugin(const std::string& path, const std::vector<Case>& cases, const Timeout& timeout);
 
+// The judged method's answers to any cases, by the same exchange as its answers to the families
+// (run_plugin or run_exec with the run's plugin or command and timeout).
+using AnswerSource = std::function<Answers(const std::vector<Case>&)>;
+
+// One failure map of the judged method (judge_maps.cpp): per cell (row-major) the certified
+// answer's code, the method's ('.' not evaluated) and whether it is a failure (a false positive
+// or negative against a certified answer).
+struct MapJudgement {
+  std::string name, query, description;
+  int cells = 0;
+  long step = 1;
+  std::string certified, codes;
+  std::vector<bool> wrong;
+  std::size_t evaluated = 0, decided = 0, false_positive = 0, false_negative = 0;
+};
+
+// The maps judged, or why there are none (`note`), and what went wrong on the way (`failure`:
+// the exchange's failures, each followed by a restart after the cell it failed on).
+struct MapsResult {
+  std::vector<MapJudgement> maps;
+  std::string note, failure;
+  std::size_t failed_cells = 0;
+};
+
+// The failure maps' size for a --size: tiny 16 x 16 cells, small (and a number) 32, default 64,
+// large 128.
+int map_cells_of_size(const std::string& size);
+
+// The study's failure maps (study_maps.cpp: map_grids) of the given queries, each cell certified
+// and answered by `source`, written to dir/failure_maps/<name>.csv and .json as the study writes
+// them (one method column, `method`), with dir/failure_maps.csv counting each map's failures.
+MapsResult judge_failure_maps(const std::filesystem::path& dir, const std::string& method, const std::vector<study::Query>& queries,
+                              const AnswerSource& source, int cells, long step, std::uint64_t seed, unsigned threads);
+
+// The hunt for the judged method's worst input (judge_maps.cpp, the study's hunt_worst of
+// study_hunt.cpp): per query, `evaluations` inputs (a quarter for cylinder pairs) each answered
+// by one exchange; dir/hunt.csv as the study writes it (one row per query). A failure of the
+// exchange ends the hunt (the input it failed on an error).
+struct HuntResult {
+  std::vector<std::string> lines;  // hunt.csv's rows
+  std::string failure;
+};
+long hunt_evaluations_of_size(const std::string& size);
+// A hunt.csv row in words: the query, the worst wrong answer and its certified gap.
+std::string hunt_text(const std::string& line);
+HuntResult judge_hunt(const std::filesystem::path& dir, const std::string& method, const std::vector<study::Query>& queries,
+                      const AnswerSource& source, long evaluations, std::uint64_t seed);
+
 // The judgement of one query and family (family "all": the query's), as families.csv counts
 // it: the outcomes by the study's name, the failures (false positives and negatives) and the
 // failure rate among the certified cases with its 95% Wilson interval (NaN when none is
@@ -147,6 +202,10 @@ struct Judgement {
   std::vector<FamilyJudgement> rows;
   std::vector<Counterexample> counterexamples;
   std::string failure;  // why not every case was judged (empty: all were)
+  const MapsResult* maps = nullptr;  // the failure maps, when they were judged
+  const HuntResult* hunt = nullptr;  // the hunt, when there was one
+  double ns_per_query = std::numeric_limits<double>::quiet_NaN();  // Answers::ns_per_query
+  std::string timing;
 };
 
 // A proportion as the summary table and the page print it ("12.3%").
@@ -157,11 +216,15 @@ double gap_size(const Case& c);
 
 // Writes dir/families.csv, dir/counterexamples.jsonl, dir/answers.jsonl (an answers file of
 // the answered cases, in the cases' order: {"id", "answer"} with the answer as judged),
-// dir/summary.txt and dir/index.html (write_report_page), and prints the summary table and
+// dir/speed.csv (when the answers were timed: one row per query in the columns of the study's
+// summary.csv, kind "judged", median_ns the time per query), dir/summary.txt and dir/index.html
+// (write_report_page), and prints the summary table and
 // "report: shown/index.html" on `out`; `shown` is where the files will be when the command ends
 // (a shard's folder is written under a temporary name and renamed when complete).
+// With `maps`, the summary and the page also report the failure maps (judge_failure_maps).
 void write_results(const std::filesystem::path& dir, const std::filesystem::path& shown, const std::string& method,
-                   const std::vector<Case>& cases, const Answers& answers, std::ostream& out);
+                   const std::vector<Case>& cases, const Answers& answers, std::ostream& out, const MapsResult* maps = nullptr,
+                   const HuntResult* hunt = nullptr);
 
 
 // Writes `file`, one self-contained HTML page (no script, no external resource: the figures are

@@ -78,11 +78,14 @@ class Shared {
     if (p == MAP_FAILED) throw std::runtime_error(std::string("--plugin: mmap: ") + std::strerror(errno));
     base_ = static_cast<char*>(p);
     new (base_) std::atomic<std::uint64_t>(0);
+    new (base_ + 8) std::atomic<std::uint64_t>(0);
   }
   ~Shared() { ::munmap(base_, bytes_); }
   Shared(const Shared&) = delete;
   Shared& operator=(const Shared&) = delete;
   std::atomic<std::uint64_t>& answered() const { return *std::launder(reinterpret_cast<std::atomic<std::uint64_t>*>(base_)); }
+  // The nanoseconds the child spent in the calls, written when it has answered every case.
+  std::atomic<std::uint64_t>& call_ns() const { return *std::launder(reinterpret_cast<std::atomic<std::uint64_t>*>(base_ + 8)); }
   std::int32_t* values() const { return reinterpret_cast<std::int32_t*>(base_ + kValues); }
 
  private:
@@ -100,12 +103,15 @@ class Shared {
   void* fns[study::kQueries.size()] = {};
   for (Query q : study::kQueries)
     if (const char* s = symbol_of(q)) fns[static_cast<std::size_t>(q)] = ::dlsym(handle, s);
+  const auto start = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < cases.size(); ++i) {
     void* fn = fns[static_cast<std::size_t>(cases[i].query)];
     if (!fn) _exit(5);  // run_plugin's caller checked that the plugin exports every case's query
     shared.values()[i] = call(fn, cases[i]);
     shared.answered().store(i + 1, std::memory_order_release);
   }
+  const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
+  shared.call_ns().store(static_cast<std::uint64_t>(std::max<long long>(ns, 1)), std::memory_order_release);
   _exit(0);
 }
 
@@ -199,7 +205,13 @@ Answers run_plugin(const std::string& path, const std::vector<Case>& cases, cons
   ::waitpid(pid, &status, 0);
   if (!result.failure.empty()) return result;
   if (!take()) return result;  // the answers given after the last look
-  if (next == cases.size() && WIFEXITED(status) && WEXITSTATUS(status) == 0) return result;
+  if (next == cases.size() && WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+    if (const std::uint64_t ns = shared.call_ns().load(std::memory_order_acquire); ns > 0 && !cases.empty()) {
+      result.ns_per_query = static_cast<double>(ns) / static_cast<double>(cases.size());
+      result.timing = "per call in the plugin's child process (the calls' total time over the cases)";
+    }
+    return result;
+  }
   const std::string at = next < cases.size() ? line_of(cases, next) : "the end";
   const std::string which = next < cases.size() ? ", case '" + cases[next].id + "'" : "";
   if (WIFSIGNALED(status)) {

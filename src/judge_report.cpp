@@ -15,6 +15,7 @@
 #include <tuple>
 
 #include "judge_internal.hpp"
+#include "study_files.hpp"
 #include "study_internal.hpp"
 
 namespace certcyl::cli::judging {
@@ -49,6 +50,15 @@ std::string csv_field(const std::string& s) {
 }
 
 }  // namespace
+
+std::string hunt_text(const std::string& line) {
+  const std::vector<std::string> f = detail::split(line, ',');
+  if (f.size() < 11) return line;
+  std::string t = f[1] + ": ";
+  if (f[4] != "1") return t + "no wrong answer found in " + f[3] + " inputs";
+  return t + f[5] + " where the certified answer is " + f[6] + " (" + f[7] + "), certified gap [" + f[8] + ", " + f[9] +
+         "], found from family " + f[2] + " in " + f[3] + " inputs";
+}
 
 std::string percent(double p) {
   char buf[32];
@@ -88,7 +98,8 @@ Answered answered_line(const nlohmann::json& j) {
 }
 
 void write_results(const fs::path& dir, const fs::path& shown, const std::string& method, const std::vector<Case>& cases,
-                   const Answers& answers, std::ostream& out) {
+                   const Answers& answers, std::ostream& out, const MapsResult* maps,
+                   const HuntResult* hunt) {
   fs::create_directories(dir);
   std::map<std::pair<std::string, std::string>, FamilyJudgement> by_family;  // (query, family)
   std::map<std::string, FamilyJudgement> by_query;
@@ -97,6 +108,10 @@ void write_results(const fs::path& dir, const fs::path& shown, const std::string
   j.method = method;
   j.cases = cases.size();
   j.failure = answers.failure;
+  j.maps = maps;
+  j.hunt = hunt;
+  j.ns_per_query = answers.ns_per_query;
+  j.timing = answers.timing;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     if (!answers.answers[i]) continue;
     ++j.judged;
@@ -175,6 +190,39 @@ void write_results(const fs::path& dir, const fs::path& shown, const std::string
   }
   table << j.counterexamples.size() << " counterexamples (distinct inputs) in " << (shown / "counterexamples.jsonl").string() << '\n';
   if (!answers.failure.empty()) table << "not all cases judged: " << answers.failure << '\n';
+  if (maps) {
+    for (const MapJudgement& m : maps->maps)
+      table << "failure map " << m.name << " (" << m.query << "): " << (m.false_positive + m.false_negative) << " wrong of " << m.evaluated
+            << " cells evaluated (" << m.cells << " x " << m.cells << ", " << m.step << " ulp apart)\n";
+    if (!maps->maps.empty()) table << "failure maps in " << (shown / "failure_maps").string() << '\n';
+    if (!maps->note.empty()) table << "failure maps: " << maps->note << '\n';
+    if (!maps->failure.empty()) table << "failure maps: " << maps->failure << '\n';
+  }
+  if (hunt) {
+    for (const std::string& l : hunt->lines) table << "hunt: " << hunt_text(l) << '\n';
+    if (!hunt->lines.empty()) table << "hunt: the worst inputs in " << (shown / "hunt.csv").string() << '\n';
+    if (!hunt->failure.empty()) table << "hunt: ended early, " << hunt->failure << '\n';
+  }
+
+  // speed.csv: the method beside the study's methods on its speed-against-error figure, one row per
+  // query in the columns of the study's summary.csv (the disagreement rate among the decided
+  // answers of the certified cases, as the study's).
+  if (std::isfinite(answers.ns_per_query)) {
+    std::ofstream speed(dir / "speed.csv");
+    speed << "query,method,kind,n,false_positive,false_negative,class_mismatch,undecided,error,invalid,disagreement_rate,median_ns\n";
+    for (const FamilyJudgement& r : j.rows) {
+      if (r.family != "all") continue;
+      const std::size_t decided = r.certified - r.at("undecided") - r.at("error") - r.at("invalid");
+      const double rate = decided > 0 ? static_cast<double>(r.failures) / static_cast<double>(decided) : 0.0;
+      speed << csv_field(r.query) << ',' << csv_field(method) << ",judged," << r.certified << ',' << r.at("false_positive") << ','
+            << r.at("false_negative") << ',' << r.at("class_mismatch") << ',' << r.at("undecided") << ',' << r.at("error") << ','
+            << r.at("invalid") << ',' << detail::num(rate) << ',' << detail::num(answers.ns_per_query) << '\n';
+    }
+    detail::close_written(speed, dir / "speed.csv");
+    char ns[64];
+    std::snprintf(ns, sizeof ns, "%.1f", answers.ns_per_query);
+    table << "speed: " << ns << " ns per query, " << answers.timing << " (speed.csv)\n";
+  }
 
   // answers.jsonl: the answers as judged, an answers file for the same cases (a shard's, merged).
   std::ofstream given(dir / "answers.jsonl");

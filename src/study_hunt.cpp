@@ -85,6 +85,75 @@ std::string hunt_in_child(const Method& m, const std::function<std::string(const
 
 }  // namespace
 
+std::string hunt_worst(const std::string& name, Query query, std::uint64_t seed, long budget,
+                       const std::function<MethodOutput(const std::vector<double>&)>& run,
+                       const std::function<void(const std::string&)>& trace) {
+  const auto families = all_families();
+  std::vector<const Family*> starts;
+  for (const Family& f : families)
+    if (std::find(f.queries.begin(), f.queries.end(), query) != f.queries.end() && f.name != "uniform") starts.push_back(&f);
+  Rng rng(mix(seed, hash_string(name + std::string(to_string(query)))));
+  const long restarts = std::max(1L, budget / 50);
+  long evaluations = 0;
+  double best_score = -std::numeric_limits<double>::infinity();
+  Instance best;
+  MethodOutput best_out;
+  std::string best_family;
+  auto score = [&](Instance& inst, MethodOutput& out) {
+    ++evaluations;
+    certify(inst);
+    if (inst.certified == Answer::undecided) return -std::numeric_limits<double>::infinity();
+    if (trace) trace("X " + x_hex(inst.x));
+    out = run(inst.x);
+    if (!disagrees(judge(out, inst.certified))) return -std::numeric_limits<double>::infinity();
+    // The certified lower bound of |gap| (0 when the enclosure contains 0).
+    const double g = inst.gap_lo > 0 ? inst.gap_lo : (inst.gap_hi < 0 ? -inst.gap_hi : 0.0);
+    return g > 0 ? std::log(g) : -1e300;
+  };
+  for (long r = 0; r < restarts && evaluations < budget; ++r) {
+    const Family* f = starts[static_cast<std::size_t>(rng.integer(0, static_cast<long long>(starts.size()) - 1))];
+    Instance cur;
+    cur.query = query;
+    cur.x = f->make(rng, query, 0).x;
+    if (trace) trace("F " + f->name);
+    const std::vector<double> start = cur.x;
+    double scale = 0;
+    for (double v : start) scale = std::max(scale, std::fabs(v));
+    MethodOutput cur_out;
+    double cur_score = score(cur, cur_out);
+    const long steps = budget / restarts;
+    for (long s = 0; s < steps && evaluations < budget; ++s) {
+      Instance next = cur;
+      const std::size_t c = static_cast<std::size_t>(rng.integer(0, static_cast<long long>(next.x.size()) - 1));
+      const long long e = rng.integer(0, 44);
+      const long long step = (1LL << e) * (rng.coin() ? 1 : -1);
+      next.x[c] = ulp_step(next.x[c], step);
+      // Stay near the restart's configuration (each coordinate within 2^-6 of its start,
+      // relative to the input's scale): the search asks how far from the degeneracy a method
+      // stays wrong, not where double overflows.
+      if (std::fabs(next.x[c] - start[c]) > 0x1p-6 * scale) continue;
+      MethodOutput next_out;
+      const double sc = score(next, next_out);
+      // Before a first failure, wander; afterwards, only climb.
+      if (sc >= cur_score || cur_score == -std::numeric_limits<double>::infinity()) {
+        if (sc == -std::numeric_limits<double>::infinity() && cur_score == -std::numeric_limits<double>::infinity() && e > 20) continue;
+        cur = std::move(next), cur_out = next_out, cur_score = sc;
+      }
+      if (cur_score > best_score) best_score = cur_score, best = cur, best_out = cur_out, best_family = f->name;
+    }
+    if (cur_score > best_score) best_score = cur_score, best = cur, best_out = cur_out, best_family = f->name;
+  }
+  std::ostringstream line;
+  const bool found = best_score > -std::numeric_limits<double>::infinity();
+  line << name << ',' << to_string(query) << ',' << (found ? best_family : "") << ',' << evaluations << ',' << (found ? 1 : 0);
+  if (found)
+    line << ',' << answer_label(best_out) << ',' << to_string(best.certified) << ',' << to_string(judge(best_out, best.certified))
+         << ',' << num(best.gap_lo) << ',' << num(best.gap_hi) << ',' << x_hex(best.x);
+  else
+    line << ",,,,,,";
+  return line.str();
+}
+
 // For each method: random restarts at the degenerate configurations of its query's families
 // (k = 0), then a local search over ulp perturbations of single coordinates (each coordinate
 // kept within 2^-6 of its start, relative to the largest input coordinate) that keeps the
@@ -99,79 +168,13 @@ void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& d
         static_cast<int>(i % o.shard_count) == o.shard_index)
       methods.push_back(&m);
   }
-  const auto families = all_families();
   std::vector<std::string> lines(methods.size());
   Progress progress(o, "hunting", methods.size());
-  // `trace`, when set, hears of each start family ("F name") and of each input before the
-  // method runs on it ("X hexfloats"): the parent of a hunt run in a child process learns
-  // which input ended the process.
   auto hunt_one = [&](std::size_t mi, const std::function<void(const std::string&)>& trace) {
     const Method& m = *methods[mi];
-    std::vector<const Family*> starts;
-    for (const Family& f : families)
-      if (std::find(f.queries.begin(), f.queries.end(), m.query) != f.queries.end() && f.name != "uniform") starts.push_back(&f);
-    Rng rng(mix(o.seed, hash_string(m.name() + std::string(to_string(m.query)))));
     const long query_budget = m.query == Query::cylinder_cylinder ? std::max(1L, o.hunt_evaluations / 4) : o.hunt_evaluations;
     const long budget = std::max(1L, query_budget / static_cast<long>(std::max(1u, m.effort.hunt_divisor)));
-    const long restarts = std::max(1L, budget / 50);
-    long evaluations = 0;
-    double best_score = -std::numeric_limits<double>::infinity();
-    Instance best;
-    MethodOutput best_out;
-    std::string best_family;
-    auto score = [&](Instance& inst, MethodOutput& out) {
-      ++evaluations;
-      certify(inst);
-      if (inst.certified == Answer::undecided) return -std::numeric_limits<double>::infinity();
-      if (trace) trace("X " + x_hex(inst.x));
-      out = run_quiet(m, inst.x);
-      if (!disagrees(judge(out, inst.certified))) return -std::numeric_limits<double>::infinity();
-      // The certified lower bound of |gap| (0 when the enclosure contains 0).
-      const double g = inst.gap_lo > 0 ? inst.gap_lo : (inst.gap_hi < 0 ? -inst.gap_hi : 0.0);
-      return g > 0 ? std::log(g) : -1e300;
-    };
-    for (long r = 0; r < restarts && evaluations < budget; ++r) {
-      const Family* f = starts[static_cast<std::size_t>(rng.integer(0, static_cast<long long>(starts.size()) - 1))];
-      Instance cur;
-      cur.query = m.query;
-      cur.x = f->make(rng, m.query, 0).x;
-      if (trace) trace("F " + f->name);
-      const std::vector<double> start = cur.x;
-      double scale = 0;
-      for (double v : start) scale = std::max(scale, std::fabs(v));
-      MethodOutput cur_out;
-      double cur_score = score(cur, cur_out);
-      const long steps = budget / restarts;
-      for (long s = 0; s < steps && evaluations < budget; ++s) {
-        Instance next = cur;
-        const std::size_t c = static_cast<std::size_t>(rng.integer(0, static_cast<long long>(next.x.size()) - 1));
-        const long long e = rng.integer(0, 44);
-        const long long step = (1LL << e) * (rng.coin() ? 1 : -1);
-        next.x[c] = ulp_step(next.x[c], step);
-        // Stay near the restart's configuration (each coordinate within 2^-6 of its start,
-        // relative to the input's scale): the search asks how far from the degeneracy a method
-        // stays wrong, not where double overflows.
-        if (std::fabs(next.x[c] - start[c]) > 0x1p-6 * scale) continue;
-        MethodOutput next_out;
-        const double sc = score(next, next_out);
-        // Before a first failure, wander; afterwards, only climb.
-        if (sc >= cur_score || cur_score == -std::numeric_limits<double>::infinity()) {
-          if (sc == -std::numeric_limits<double>::infinity() && cur_score == -std::numeric_limits<double>::infinity() && e > 20) continue;
-          cur = std::move(next), cur_out = next_out, cur_score = sc;
-        }
-        if (cur_score > best_score) best_score = cur_score, best = cur, best_out = cur_out, best_family = f->name;
-      }
-      if (cur_score > best_score) best_score = cur_score, best = cur, best_out = cur_out, best_family = f->name;
-    }
-    std::ostringstream line;
-    const bool found = best_score > -std::numeric_limits<double>::infinity();
-    line << m.name() << ',' << to_string(m.query) << ',' << (found ? best_family : "") << ',' << evaluations << ',' << (found ? 1 : 0);
-    if (found)
-      line << ',' << answer_label(best_out) << ',' << to_string(best.certified) << ',' << to_string(judge(best_out, best.certified))
-           << ',' << num(best.gap_lo) << ',' << num(best.gap_hi) << ',' << x_hex(best.x);
-    else
-      line << ",,,,,,";
-    lines[mi] = line.str();
+    lines[mi] = hunt_worst(m.name(), m.query, o.seed, budget, [&m](const std::vector<double>& x) { return run_quiet(m, x); }, trace);
   };
   // The parallel methods on the threads, then the serial ones on this thread only, each in a
   // child process: CORE::Expr ends the process (abort, or exit(1) from its BigFloat division)

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <exception>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -110,8 +111,41 @@ void write_instances(const fs::path& dir, const std::vector<Planned>& plan, cons
 
 // failure_maps/ in dir (study_maps.cpp).
 void run_failure_maps(const StudyOptions& o, const study::Registry& registry, const fs::path& dir);
+
+// The failure maps' grids, shared by the study and `certcyl judge` (study_maps.cpp): one per
+// degenerate configuration, cells x cells inputs `step` ulps apart in coordinates c0 (rows) and
+// c1 (columns) around `base`, the centre cell (cells/2, cells/2) the configuration itself.
+struct MapGrid {
+  std::string name, description;
+  study::Query query = study::Query::line_cylinder;
+  std::vector<double> base;
+  std::size_t c0 = 0, c1 = 0;
+  int cells = 0;
+  long step = 1;
+  // The input of a cell (row-major: cell = i * cells + j).
+  std::vector<double> input(std::size_t cell) const;
+  // The first columns of a map's CSV row: i, j, d0_ulps, d1_ulps, certified code, gap_lo, gap_hi
+  // (`inst` the cell's input, certified).
+  std::string certified_line(std::size_t cell, const study::Instance& inst) const;
+};
+std::vector<MapGrid> map_grids(std::uint64_t seed, int cells, long step);
+// A map cell's code of an answer: s, t, o, i (a boolean "they meet"), u, e (error or invalid).
+char answer_code(const study::MethodOutput& m);
+// Writes maps/<name>.csv (lines[cell] then one code per method: codes[cell][k] for methods[k],
+// '.' not evaluated) and maps/<name>.json (the grid, and the methods' map_strides).
+void write_failure_map(const fs::path& maps, const MapGrid& grid, const std::vector<std::string>& lines,
+                       const std::vector<std::string>& methods, const std::vector<std::string>& codes,
+                       const nlohmann::ordered_json& strides);
 // hunt.csv in dir: this shard's share of the methods (study_hunt.cpp).
 void run_hunt(const StudyOptions& o, const study::Registry& registry, const fs::path& dir);
+// The hunt of one method (`run` its answer to an input), shared by the study and `certcyl
+// judge` (study_hunt.cpp): `budget` evaluations from the degenerate configurations of the
+// query's families; returns its hunt.csv line. `trace`, when set, hears of each start family
+// ("F name") and of each input before the method runs on it ("X hexfloats"), so the parent of a
+// hunt run in a child process learns which input ended the process.
+std::string hunt_worst(const std::string& name, study::Query query, std::uint64_t seed, long budget,
+                       const std::function<study::MethodOutput(const std::vector<double>&)>& run,
+                       const std::function<void(const std::string&)>& trace);
 // The contents of machine.json (study_machine.cpp).
 nlohmann::ordered_json machine_json(const StudyOptions& o, const std::vector<std::string>& peers);
 // summary.txt, summary.csv, summary_families.csv and stages.csv from dir's instances.csv and

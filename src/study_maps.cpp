@@ -15,18 +15,6 @@ using namespace certcyl::study;
 
 namespace {
 
-char answer_code(const MethodOutput& m) {
-  if (m.error || m.invalid) return 'e';
-  if (m.intersecting) return 'i';
-  switch (m.answer) {
-    case Answer::separated: return 's';
-    case Answer::touching: return 't';
-    case Answer::overlapping: return 'o';
-    case Answer::undecided: return 'u';
-  }
-  return 'u';
-}
-
 struct MapSpec {
   std::string name, family, description;
   Query query;
@@ -53,19 +41,56 @@ std::vector<MapSpec> map_specs() {
            Query::cylinder_cylinder, 7, 8}};
 }
 
+// RFC 4180 quoting of a column name that needs it (a judged method's label; the study's
+// method names never do).
+std::string csv_name(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (const char c : s) {
+    if (c == '"') q += '"';
+    q += c;
+  }
+  return q + '"';
+}
+
 }  // namespace
 
-// Every method of the query but the certified one; slow ones on a sub-grid (Effort).
-void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs::path& dir) {
-  const fs::path maps = dir / "failure_maps";
-  fs::create_directories(maps);
+char answer_code(const MethodOutput& m) {
+  if (m.error || m.invalid) return 'e';
+  if (m.intersecting) return 'i';
+  switch (m.answer) {
+    case Answer::separated: return 's';
+    case Answer::touching: return 't';
+    case Answer::overlapping: return 'o';
+    case Answer::undecided: return 'u';
+  }
+  return 'u';
+}
+
+std::vector<double> MapGrid::input(std::size_t cell) const {
+  const long i = static_cast<long>(cell) / cells, j = static_cast<long>(cell) % cells;
+  std::vector<double> x = base;
+  x[c0] = ulp_step(base[c0], (i - cells / 2) * step);
+  x[c1] = ulp_step(base[c1], (j - cells / 2) * step);
+  return x;
+}
+
+std::string MapGrid::certified_line(std::size_t cell, const Instance& inst) const {
+  const long i = static_cast<long>(cell) / cells, j = static_cast<long>(cell) % cells;
+  const long d0 = (i - cells / 2) * step, d1 = (j - cells / 2) * step;
+  return std::to_string(i) + "," + std::to_string(j) + "," + std::to_string(d0) + "," + std::to_string(d1) + "," +
+         std::string(1, answer_code(three_valued(inst.certified))) + "," + num(inst.gap_lo) + "," + num(inst.gap_hi);
+}
+
+std::vector<MapGrid> map_grids(std::uint64_t seed, int cells, long step) {
   const auto families = all_families();
+  std::vector<MapGrid> grids;
   for (MapSpec spec : map_specs()) {
     const Family* fam = nullptr;
     for (const Family& f : families)
       if (f.name == spec.family && std::find(f.queries.begin(), f.queries.end(), spec.query) != f.queries.end()) fam = &f;
     if (!fam) throw std::logic_error("failure map " + spec.name + ": no family " + spec.family);
-    Rng rng(mix(o.seed, hash_string(spec.name)));
+    Rng rng(mix(seed, hash_string(spec.name)));
     const std::vector<double> base = fam->make(rng, spec.query, 0).x;
     if (spec.across_cylinder_at != std::numeric_limits<std::size_t>::max()) {
       const std::size_t point = spec.c0, cyl = spec.across_cylinder_at;
@@ -76,9 +101,46 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
       spec.c0 = point + std::min(order[0], order[1]);
       spec.c1 = point + std::max(order[0], order[1]);
     }
+    grids.push_back({spec.name, spec.description, spec.query, base, spec.c0, spec.c1, cells, step});
+  }
+  return grids;
+}
+
+void write_failure_map(const fs::path& maps, const MapGrid& g, const std::vector<std::string>& lines,
+                       const std::vector<std::string>& methods, const std::vector<std::string>& codes,
+                       const nlohmann::ordered_json& strides) {
+  const std::size_t cells = static_cast<std::size_t>(g.cells) * static_cast<std::size_t>(g.cells);
+  std::ofstream csv(maps / (g.name + ".csv"));
+  csv << "i,j,d0_ulps,d1_ulps,certified,gap_lo,gap_hi";
+  for (const std::string& m : methods) csv << ',' << csv_name(m);
+  csv << '\n';
+  for (std::size_t cell = 0; cell < cells; ++cell) {
+    csv << lines[cell];
+    for (char c : codes[cell]) csv << ',' << c;
+    csv << '\n';
+  }
+  close_written(csv, maps / (g.name + ".csv"));
+  nlohmann::ordered_json meta{{"name", g.name},
+                              {"query", std::string(to_string(g.query))},
+                              {"description", g.description},
+                              {"base_input", x_hex(g.base)},
+                              {"perturbed_coordinates", {g.c0, g.c1}},
+                              {"cells", g.cells},
+                              {"ulps_per_cell", g.step},
+                              {"map_strides", strides},
+                              {"codes", "s separated, t touching, o overlapping, i intersecting (boolean methods), u undecided, e error or invalid (a reported value not finite), "
+                                        ". not evaluated (a slow method runs on every map_stride-th row and column through the centre)"}};
+  write_whole(maps / (g.name + ".json"), meta.dump(2) + '\n');
+}
+
+// Every method of the query but the certified one; slow ones on a sub-grid (Effort).
+void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs::path& dir) {
+  const fs::path maps = dir / "failure_maps";
+  fs::create_directories(maps);
+  for (const MapGrid& grid : map_grids(o.seed, o.map_cells, o.map_step)) {
     std::vector<const Method*> methods;
     for (const Method& m : registry)
-      if (m.query == spec.query && m.kind != MethodKind::certified && keep_name(o.methods, m.name())) methods.push_back(&m);
+      if (m.query == grid.query && m.kind != MethodKind::certified && keep_name(o.methods, m.name())) methods.push_back(&m);
     const int n = o.map_cells;
     // A method with map_stride s runs on the rows and columns i with i = n/2 (mod s): the
     // centre cell, the degenerate configuration itself, is always among them.
@@ -88,23 +150,14 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
     };
     const std::size_t cells = static_cast<std::size_t>(n) * n;
     std::vector<std::string> lines(cells), codes(cells, std::string(methods.size(), '.'));
-    auto cell_input = [&](std::size_t cell) {
-      const long i = static_cast<long>(cell) / n, j = static_cast<long>(cell) % n;
-      std::vector<double> x = base;
-      x[spec.c0] = ulp_step(base[spec.c0], (i - n / 2) * o.map_step);
-      x[spec.c1] = ulp_step(base[spec.c1], (j - n / 2) * o.map_step);
-      return x;
-    };
-    Progress progress(o, spec.name, cells);
+    Progress progress(o, grid.name, cells);
     parallel_for(cells, o.threads, [&](std::size_t cell) {
       const long i = static_cast<long>(cell) / n, j = static_cast<long>(cell) % n;
-      const long d0 = (i - n / 2) * o.map_step, d1 = (j - n / 2) * o.map_step;
       Instance inst;
-      inst.query = spec.query;
-      inst.x = cell_input(cell);
+      inst.query = grid.query;
+      inst.x = grid.input(cell);
       certify(inst);
-      lines[cell] = std::to_string(i) + "," + std::to_string(j) + "," + std::to_string(d0) + "," + std::to_string(d1) + "," +
-                    std::string(1, answer_code(three_valued(inst.certified))) + "," + num(inst.gap_lo) + "," + num(inst.gap_hi);
+      lines[cell] = grid.certified_line(cell, inst);
       for (std::size_t k = 0; k < methods.size(); ++k)
         if (!methods[k]->serial && evaluated(*methods[k], i, j)) codes[cell][k] = answer_code(run_quiet(*methods[k], inst.x));
       progress.tick();
@@ -114,32 +167,15 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
       if (!methods[k]->serial) continue;
       for (std::size_t cell = 0; cell < cells; ++cell)
         if (evaluated(*methods[k], static_cast<long>(cell) / n, static_cast<long>(cell) % n))
-          codes[cell][k] = answer_code(run_quiet(*methods[k], cell_input(cell)));
+          codes[cell][k] = answer_code(run_quiet(*methods[k], grid.input(cell)));
     }
-    std::ofstream csv(maps / (spec.name + ".csv"));
-    csv << "i,j,d0_ulps,d1_ulps,certified,gap_lo,gap_hi";
-    for (const Method* m : methods) csv << ',' << m->name();
-    csv << '\n';
-    for (std::size_t cell = 0; cell < cells; ++cell) {
-      csv << lines[cell];
-      for (char c : codes[cell]) csv << ',' << c;
-      csv << '\n';
-    }
-    close_written(csv, maps / (spec.name + ".csv"));
+    std::vector<std::string> names;
     nlohmann::ordered_json strides = nlohmann::ordered_json::object();
-    for (const Method* m : methods)
+    for (const Method* m : methods) {
+      names.push_back(m->name());
       if (m->effort.map_stride > 1) strides[m->name()] = m->effort.map_stride;
-    nlohmann::ordered_json meta{{"name", spec.name},
-                                {"query", std::string(to_string(spec.query))},
-                                {"description", spec.description},
-                                {"base_input", x_hex(base)},
-                                {"perturbed_coordinates", {spec.c0, spec.c1}},
-                                {"cells", n},
-                                {"ulps_per_cell", o.map_step},
-                                {"map_strides", strides},
-                                {"codes", "s separated, t touching, o overlapping, i intersecting (boolean methods), u undecided, e error or invalid (a reported value not finite), "
-                                          ". not evaluated (a slow method runs on every map_stride-th row and column through the centre)"}};
-    write_whole(maps / (spec.name + ".json"), meta.dump(2) + '\n');
+    }
+    write_failure_map(maps, grid, lines, names, codes, strides);
   }
 }
 
