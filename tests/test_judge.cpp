@@ -495,10 +495,12 @@ BOOST_AUTO_TEST_CASE(coprocess_reads_the_cases_query_lines) {
   for (const study::Query query : study::kQueries) {
     const std::string q(study::to_string(query));
     BOOST_TEST_REQUIRE(s.run(kCertcyl + " cases --query " + q + " --size tiny > cases.jsonl").status == 0);
-    const Run r = s.run(kCertcyl + " judge --cases cases.jsonl --exec 'tee read.jsonl | " + kCertcyl + " query'");
+    // The program runs again for the failure maps and the hunt: its first run reads the cases.
+    std::filesystem::remove(s / "read.jsonl");
+    const Run r = s.run(kCertcyl + " judge --cases cases.jsonl --exec 'tee -a read.jsonl | " + kCertcyl + " query'");
     BOOST_TEST_REQUIRE(r.status == 0, r.err);
     const auto cases = lines_of(slurp(s / "cases.jsonl")), read = lines_of(slurp(s / "read.jsonl"));
-    BOOST_TEST_REQUIRE(read.size() == cases.size());
+    BOOST_TEST_REQUIRE(read.size() >= cases.size());
     for (std::size_t i = 0; i < cases.size(); ++i) {
       nlohmann::ordered_json c = nlohmann::ordered_json::parse(cases[i]);
       c.erase("meta");
