@@ -1287,14 +1287,16 @@ class CylinderCylinderSolver {
   // and rises to what the gain found needs against its terms, or doubles when the gain rounds to
   // zero (at most `max_precision`; the best direction is found in closed form, a few evaluations
   // at any precision). The next plane goes through the witness found, else through the support
-  // point: up to six planes, more while each gives a witness (the planes through witnesses on a face of j's support converge, as Newton's
-  // method on i's rim circle, to where that face crosses the rim, and the wedge's curvature error
-  // with them). They decide pairs of a huge and a tiny cylinder (2^900 against 2^-900), needles
+  // point: up to six planes, more while each gives a witness (the planes through witnesses on a
+  // face of j's support converge, as Newton's method on i's rim circle, to where that face
+  // crosses the rim, and the wedge's curvature error with them). They decide pairs of a huge and a tiny cylinder (2^900 against 2^-900), needles
   // against pancakes, and slivers at a rim or a cap (common interiors 2^-800 thin), whose
   // separating directions or common interior are far too narrow for the rounded optimiser below
   // thousands of bits. Each candidate is checked exactly. Tried once per query and cap: a call
-  // with a higher cap than the last goes on where the last cap stopped a cylinder's planes, and
-  // skips the cylinder whose planes it did not stop (they would take the same path again).
+  // with a higher cap than the last goes on where the last cap stopped a cylinder's planes (a
+  // gain it could not resolve), and skips a cylinder whose planes ended with every gain resolved
+  // within the last cap (a higher cap would change at most the precision of a plane on the way;
+  // the candidates are heuristics either way).
   static constexpr long kCornerFirstCap = 1024, kCornerMaxPrecision = 4096;
   bool corner_candidates(long max_precision) {
     if (corner_cap_ >= max_precision) return false;
@@ -1311,7 +1313,7 @@ class CylinderCylinderSolver {
       long precision = first_precision;
       int first_pass = 0;
       if (!first_call) {
-        // Planes whose run the last cap did not stop would take the same path again.
+        // Planes whose run ended with every gain resolved within the last cap are not rerun.
         if (!corner_resume_[i]) continue;
         const CornerResume& r = *corner_resume_[i];
         y = r.y;
