@@ -24,6 +24,7 @@
 #include <unistd.h>
 
 #include "cases.hpp"
+#include "judge_test_support.hpp"
 #include "study/families.hpp"
 #include "study/gap.hpp"
 #include "study_internal.hpp"
@@ -32,49 +33,14 @@
 using namespace certcyl;
 using json = nlohmann::json;
 namespace fs = std::filesystem;
+using judge_test::lines_of;
+using judge_test::Run;
+using judge_test::Scratch;
+using judge_test::slurp;
 
 namespace {
 
 const std::string kCertcyl = CERTCYL_BIN;
-
-struct Run {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> v;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);)
-    if (!l.empty()) v.push_back(l);
-  return v;
-}
-
-// A scratch folder per test case, removed at the end.
-struct Scratch {
-  fs::path dir;
-  Scratch() {
-    dir = fs::temp_directory_path() / ("certcyl_judge_" + std::to_string(::getpid()) + "_" +
-                                       boost::unit_test::framework::current_test_case().p_name.get());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~Scratch() { fs::remove_all(dir); }
-  std::string operator/(const std::string& name) const { return (dir / name).string(); }
-  // Runs a shell command line in the folder.
-  Run run(const std::string& command) const {
-    const std::string cmd = "cd '" + dir.string() + "' && { " + command + "; } > out.txt 2> err.txt";
-    const int s = std::system(cmd.c_str());
-    return {WIFEXITED(s) ? WEXITSTATUS(s) : -1, slurp(dir / "out.txt"), slurp(dir / "err.txt")};
-  }
-};
 
 // The records of a CSV text as RFC 4180 reads them: fields split at commas outside double
 // quotes, "" a quote inside them, a line break inside quotes part of the field.

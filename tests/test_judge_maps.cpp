@@ -20,47 +20,21 @@
 #include <unistd.h>
 
 #include "judge_internal.hpp"
+#include "judge_test_support.hpp"
 #include "study_internal.hpp"
 
 using namespace certcyl;
 using namespace certcyl::cli::judging;
 using json = nlohmann::json;
 namespace fs = std::filesystem;
+using judge_test::lines_of;
+using judge_test::Run;
+using judge_test::Scratch;
+using judge_test::slurp;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> v;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);)
-    if (!l.empty()) v.push_back(l);
-  return v;
-}
-
 std::vector<std::string> fields(const std::string& line) { return cli::detail::split(line, ','); }
-
-struct Scratch {
-  fs::path dir;
-  Scratch() {
-    dir = fs::temp_directory_path() / ("certcyl_judge_maps_" + std::to_string(::getpid()) + "_" +
-                                       boost::unit_test::framework::current_test_case().p_name.get());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~Scratch() { fs::remove_all(dir); }
-  int run(const std::string& command) const {
-    const std::string cmd = "cd '" + dir.string() + "' && { " + command + "; } > out.txt 2> err.txt";
-    const int s = std::system(cmd.c_str());
-    return WIFEXITED(s) ? WEXITSTATUS(s) : -1;
-  }
-};
 
 bool meets(char code) { return code == 't' || code == 'o' || code == 'i'; }
 
@@ -90,8 +64,8 @@ AnswerSource answering(const std::string& fixed = "") {
 
 BOOST_AUTO_TEST_CASE(example_plugin_maps_record_its_failures_near_tangency) {
   Scratch s;
-  const int status = s.run(std::string(CERTCYL_BIN) + " judge --plugin " CERTCYL_PLUGIN_DOUBLE " --size tiny");
-  BOOST_TEST_REQUIRE(status == 0, slurp(s.dir / "err.txt"));
+  const Run r = s.run(std::string(CERTCYL_BIN) + " judge --plugin " CERTCYL_PLUGIN_DOUBLE " --size tiny");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
   const fs::path folder = s.dir / "results/judge";
   // One map per degeneracy of the queries it exports (no triangle, no elliptic cylinder).
   const std::set<std::string> expected{"tangent_line", "rim_line", "ray_ends_on_wall", "segment_ends_on_wall", "touching_cylinders"};
@@ -185,9 +159,9 @@ BOOST_AUTO_TEST_CASE(a_failure_on_the_way_keeps_the_other_cells) {
 
 BOOST_AUTO_TEST_CASE(an_answers_file_has_no_maps) {
   Scratch s;
-  BOOST_TEST_REQUIRE(s.run(std::string(CERTCYL_BIN) + " cases --query line_cylinder --size tiny > cases.jsonl") == 0);
-  BOOST_TEST_REQUIRE(s.run(std::string(CERTCYL_BIN) + " query < cases.jsonl > answers.jsonl") == 0);
-  BOOST_TEST_REQUIRE(s.run(std::string(CERTCYL_BIN) + " judge --answers answers.jsonl --cases cases.jsonl") == 0);
+  BOOST_TEST_REQUIRE(s.run(std::string(CERTCYL_BIN) + " cases --query line_cylinder --size tiny > cases.jsonl").status == 0);
+  BOOST_TEST_REQUIRE(s.run(std::string(CERTCYL_BIN) + " query < cases.jsonl > answers.jsonl").status == 0);
+  BOOST_TEST_REQUIRE(s.run(std::string(CERTCYL_BIN) + " judge --answers answers.jsonl --cases cases.jsonl").status == 0);
   BOOST_TEST(!fs::exists(s.dir / "results/judge/failure_maps"));
   BOOST_TEST(slurp(s.dir / "out.txt").find("failure maps: they need --plugin or --exec") != std::string::npos, slurp(s.dir / "out.txt"));
 }
