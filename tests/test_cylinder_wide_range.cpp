@@ -26,20 +26,27 @@
 using namespace cctest;
 using certcyl::Answer;
 
+// The query on a case in both orders: f(a, b, swapped, result).
+template <class F>
+void for_both_orders(const WideCase& c, F f) {
+  for (const bool swap : {false, true}) {
+    const Cylinder<Q>& a = swap ? c.b : c.a;
+    const Cylinder<Q>& b = swap ? c.a : c.b;
+    f(a, b, swap, certcyl::certified_cylinder_cylinder(a, b));
+  }
+}
+
 BOOST_AUTO_TEST_CASE(wide_range_pairs_are_all_decided_and_right) {
   int undecided = 0, checked = 0;
   for (const WideCase& c : wide_range_cases()) {
-    for (const bool swap : {false, true}) {
-      const Cylinder<Q>& a = swap ? c.b : c.a;
-      const Cylinder<Q>& b = swap ? c.a : c.b;
-      const certcyl::CylinderCylinderResult r = certcyl::certified_cylinder_cylinder(a, b);
+    for_both_orders(c, [&](const Cylinder<Q>& a, const Cylinder<Q>& b, bool swap, const certcyl::CylinderCylinderResult& r) {
       ++checked;
       BOOST_TEST_CONTEXT(c.name << (swap ? " swapped" : "")) {
         BOOST_TEST(certcyl::recheck::check_cylinder_pair(a, b, r) == "");
         undecided += r.answer == Answer::undecided;
         BOOST_TEST(r.answer == c.expected);
       }
-    }
+    });
   }
   BOOST_TEST_MESSAGE(checked << " queries, " << undecided << " undecided");
   BOOST_TEST(undecided == 0);
@@ -57,10 +64,7 @@ BOOST_AUTO_TEST_CASE(corner_candidates_decide_huge_against_tiny_pairs) {
   for (const WideCase& c : wide_range_cases()) {
     if (!c.binary64 || c.expected == Answer::touching) continue;
     if (c.name.find("ea=900 eb=-900") == std::string::npos && c.name.find("ea=960 eb=-1000") == std::string::npos) continue;
-    for (const bool swap : {false, true}) {
-      const Cylinder<Q>& a = swap ? c.b : c.a;
-      const Cylinder<Q>& b = swap ? c.a : c.b;
-      const certcyl::CylinderCylinderResult r = certcyl::certified_cylinder_cylinder(a, b);
+    for_both_orders(c, [&](const Cylinder<Q>& a, const Cylinder<Q>& b, bool swap, const certcyl::CylinderCylinderResult& r) {
       ++checked;
       BOOST_TEST_CONTEXT(c.name << (swap ? " swapped" : "") << ": stage " << certcyl::to_string(r.stage)) {
         BOOST_TEST(r.answer == c.expected);
@@ -71,7 +75,7 @@ BOOST_AUTO_TEST_CASE(corner_candidates_decide_huge_against_tiny_pairs) {
           BOOST_TEST(r.ellipsoid_precision <= 128);
         }
       }
-    }
+    });
   }
   BOOST_TEST(checked >= 100);
 }
@@ -85,10 +89,7 @@ BOOST_AUTO_TEST_CASE(touching_wide_range_pairs_are_proved_before_the_high_precis
   int checked = 0;
   for (const WideCase& c : wide_range_cases()) {
     if (c.expected != Answer::touching) continue;
-    for (const bool swap : {false, true}) {
-      const Cylinder<Q>& a = swap ? c.b : c.a;
-      const Cylinder<Q>& b = swap ? c.a : c.b;
-      const certcyl::CylinderCylinderResult r = certcyl::certified_cylinder_cylinder(a, b);
+    for_both_orders(c, [&](const Cylinder<Q>&, const Cylinder<Q>&, bool swap, const certcyl::CylinderCylinderResult& r) {
       ++checked;
       BOOST_TEST_CONTEXT(c.name << (swap ? " swapped" : "") << ": stage " << certcyl::to_string(r.stage)) {
         BOOST_TEST(r.answer == Answer::touching);
@@ -96,7 +97,7 @@ BOOST_AUTO_TEST_CASE(touching_wide_range_pairs_are_proved_before_the_high_precis
         BOOST_TEST(r.gmpfr_precision == 0);
         BOOST_TEST(r.counters.ellipsoid_steps == 0u);
       }
-    }
+    });
   }
   BOOST_TEST(checked >= 100);
 }
