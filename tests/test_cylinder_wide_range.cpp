@@ -21,6 +21,7 @@
 #include "certcyl/certified/triangle_cylinder.hpp"
 #include "test_cylinder_wide_range_cases.hpp"
 
+#include <cmath>
 #include <random>
 
 using namespace cctest;
@@ -156,8 +157,9 @@ BOOST_AUTO_TEST_CASE(fuzz_needle_is_overlapping) {
 // needle's end disc. By construction X = (-3.65625, 42031, 10^6) is interior to both:
 // (X - b.p0).A_b is about 1176 in (0, A_b.A_b = 2260.25), X is about 10^6 from either axis, and
 // (X - a.p1).A_a < 0 < (X - a.p0).A_a. In the frame of b's slab across a's tube the common
-// interior fills a fixed part of the ball: the short runs decide it, with no Gmpfr round.
-BOOST_AUTO_TEST_CASE(needle_crossing_a_pancake_is_decided_by_the_short_runs) {
+// interior fills a fixed part of the ball: the short runs decide it, with no Gmpfr round; the
+// exact candidates' witnesses beside the caps now decide it before them.
+BOOST_AUTO_TEST_CASE(needle_crossing_a_pancake_is_decided_without_a_gmpfr_round) {
   const certcyl::Cylinder<double> a{{-0x1.ap-2, 0x1.b971f3ec2802bp+859, -0x1.9996d1f70baf3p+658},
                                     {-0x1.d4p+1, 0x1.b8p-2, 0x1.fe0a370d2c607p-195}, 0x1.9727d283c561bp+107};
   const certcyl::Cylinder<double> b{{0x1.40e199c96f487p-146, -0x1.8cp+5, -0x1.7d0642a08f7b7p-925},
@@ -171,7 +173,7 @@ BOOST_AUTO_TEST_CASE(needle_crossing_a_pancake_is_decided_by_the_short_runs) {
     BOOST_TEST_CONTEXT((swap ? "swapped: " : "") << "stage " << to_string(r.stage)) {
       BOOST_TEST(r.answer == Answer::overlapping);
       BOOST_TEST(certcyl::recheck::check_cylinder_pair(swap ? qb : qa, swap ? qa : qb, r) == "");
-      BOOST_TEST((r.stage == certcyl::CylinderStage::ellipsoid));
+      BOOST_TEST((r.stage == certcyl::CylinderStage::ellipsoid || r.stage == certcyl::CylinderStage::gmpfr));
       BOOST_TEST(r.gmpfr_precision == 0);
       BOOST_TEST(r.counters.ellipsoid_steps <= 24u);
     }
@@ -471,4 +473,55 @@ BOOST_AUTO_TEST_CASE(rounded_ellipsoid_runs_reach_certificates) {
       BOOST_TEST_CONTEXT(base.name << " side " << side << " p " << precision) { BOOST_TEST(found); }
     }
   }
+}
+
+// Slivers that the exact candidates decide before the corner candidates, the touching proofs and
+// the ellipsoid stage. b is a slab 2^40 deep below the plane z = 0, radius 2^900.
+//   End in: a needle (radius 1/2, 2^125 long, tilted) whose end centre lies 2^-k below z = 0,
+//   so inside b: overlapping. Decided by the end's step along a's axis, sized from the end's
+//   depth in b (at most eight points checked; the corner candidates checked fourteen).
+//   End out: the same needle upright (its end disk horizontal) ending 2^-k above z = 0:
+//   separated.
+//   Tube on the cap: a tube of radius 1/4 lying 2^-k above z = 0 along x, 2^601 long: its tube
+//   reaches 1/4 - 2^-k into b: overlapping.
+//   Two flat cylinders: a from (-2^744, 0, 0) to (-16, 0, 0), radius 2^752, and b from the
+//   origin to (2^286, 2^-14, 0), radius 2^968. Near the axes the slabs x < -16 and 0 < x < 2^286
+//   are apart, but W = (-2^400, 2^700 + 2^500, 0) has (W - b.p0).A_b = -2^686 + 2^686 + 2^486,
+//   between 0 and A_b.A_b > 2^572, lies about 2^700 from both axes, and has -2^744 < W.x < -16:
+//   overlapping. Decided by a point of a's cap disk inside b pushed into a, after the corner
+//   candidates and before any ellipsoid step (the short runs decided it before).
+BOOST_AUTO_TEST_CASE(slivers_beside_a_cap_are_decided_by_the_exact_candidates) {
+  const auto two = [](int e) { return std::ldexp(1.0, e); };
+  const certcyl::Cylinder<double> slab{{0, 0, -two(40)}, {0, 0, 0}, two(900)};
+  const auto to_q = [](double x) { return Q(x); };
+  const auto both_orders = [&](const certcyl::Cylinder<double>& a, const certcyl::Cylinder<double>& b, Answer expected, auto&& extra) {
+    for (const bool swap : {false, true}) {
+      const certcyl::Cylinder<double>& x = swap ? b : a;
+      const certcyl::Cylinder<double>& y = swap ? a : b;
+      const auto r = certcyl::certified_cylinder_cylinder(x, y);
+      BOOST_TEST_CONTEXT((swap ? "swapped" : "in order") << ", points checked " << r.counters.points_checked) {
+        BOOST_TEST(r.answer == expected);
+        BOOST_TEST(certcyl::recheck::check_cylinder_pair(x.map(to_q), y.map(to_q), r) == "");
+        extra(r);
+      }
+    }
+  };
+  const auto nothing = [](const certcyl::CylinderCylinderResult&) {};
+  for (const int k : {100, 400, 1000}) {
+    BOOST_TEST_CONTEXT("k = " << k) {
+      const double d = two(-k);
+      both_orders({{two(-30), 3, two(125)}, {1, 2, -d}, 0.5}, slab, Answer::overlapping, [](const certcyl::CylinderCylinderResult& r) {
+        BOOST_TEST(r.counters.points_checked <= 8u);
+        BOOST_TEST(r.counters.ellipsoid_steps == 0u);
+      });
+      both_orders({{1, 2, two(125)}, {1, 2, d}, 0.5}, slab, Answer::separated, nothing);
+      both_orders({{-two(600), 1, d}, {two(601), 3, d}, 0.25}, slab, Answer::overlapping, nothing);
+    }
+  }
+  both_orders({{-two(744), 0, 0}, {-16, 0, 0}, two(752)}, {{0, 0, 0}, {two(286), two(-14), 0}, two(968)}, Answer::overlapping,
+              [](const certcyl::CylinderCylinderResult& r) {
+                BOOST_TEST((r.stage == certcyl::CylinderStage::gmpfr));
+                BOOST_TEST(r.gmpfr_precision == 0);
+                BOOST_TEST(r.counters.ellipsoid_steps == 0u);
+              });
 }

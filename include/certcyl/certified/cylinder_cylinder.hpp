@@ -59,10 +59,16 @@
 //                    detail/cylinder_rim_contacts.hpp, a small-height rational reconstruction of
 //                    the optimiser's direction), each proved or rejected exactly: an interval
 //                    pre-filter, then prove_touching_ring in Mpzf in the ring frame (Gmpq's
-//                    prove_touching when there is no ring frame).
-//   gmpfr            exact candidates first (the midpoints and points of an end disc of one
-//                    cylinder whose end lies in the other as witnesses, T and its parts
-//                    orthogonal to the axes as directions, all in Gmpq), then the corner
+//                    prove_touching when there is no ring frame: rational input whose
+//                    denominators' lcm exceeds 4,096 bits).
+//   gmpfr            exact candidates first (directions: T, its parts orthogonal to the axes, the
+//                    axes and their cross product; witnesses: the midpoints, the closest points
+//                    of the axes, points of an end disc of one cylinder whose end lies in the
+//                    other, an end's step along its axis sized from its depth in the other,
+//                    points of one tube beside its axis's closest point, points of the line
+//                    where the slabs' mid-planes meet, and points of a cap disk inside the other
+//                    pushed into the cylinder; each checked exactly, in the ring frame when
+//                    there is one), then the corner
 //                    candidates of detail/cylinder_corner_plane.hpp (the best direction of one
 //                    cylinder's rim wedge in the plane through its axis and the other, and the
 //                    other's deepest point in it, on quantities reduced exactly to the smaller
@@ -359,11 +365,12 @@ inline double phi_lower_from_sigma(double sigma_upper) {
 // geometry works at) to the largest coordinate or radius (what a rounded Gmpfr input loses its
 // bits against). The digits of a rational do not count: the Gmpfr rounds only produce
 // candidates, and every check is exact.
+// floor(log2 |q|) within one, for q != 0.
+inline long binade(const Rational& q) {
+  return static_cast<long>(mpz_sizeinbase(mpq_numref(q.mpq()), 2)) - static_cast<long>(mpz_sizeinbase(mpq_denref(q.mpq()), 2));
+}
+
 inline long cylinder_pair_span_bits(const CylinderPair<Rational>& e) {
-  // floor(log2 |q|) within one, for q != 0.
-  const auto binade = [](const Rational& q) {
-    return static_cast<long>(mpz_sizeinbase(mpq_numref(q.mpq()), 2)) - static_cast<long>(mpz_sizeinbase(mpq_denref(q.mpq()), 2));
-  };
   long hi = std::numeric_limits<long>::min(), lo = std::numeric_limits<long>::max();
   for (const Cylinder<Rational>* c : {&e.c0, &e.c1})
     for (const Rational* q : {&c->p0.x, &c->p0.y, &c->p0.z, &c->p1.x, &c->p1.y, &c->p1.z, &c->radius})
@@ -1093,10 +1100,13 @@ class CylinderCylinderSolver {
   const RingFrame* ring() {
     if (!ring_tried_) {
       ring_tried_ = true;
-      if (binary64_) {
-        if (world_exact_) ring_ = RingFrame::from_world(dbl_.c0, dbl_.c1, world_exponent_);
+      // Binary64 input whose world frame is not exact (it spans more binades than a double
+      // holds, so the world frame is the input frame) takes the rational frame: its
+      // denominators are powers of two, L at most 2^1074.
+      if (binary64_ && world_exact_) {
+        ring_ = RingFrame::from_world(dbl_.c0, dbl_.c1, world_exponent_);
       } else {
-        ring_ = RingFrame::from_rational(*input_[0], *input_[1]);
+        ring_ = RingFrame::from_rational(exact_cylinder(0), exact_cylinder(1));
       }
     }
     return ring_ ? &*ring_ : nullptr;
@@ -1275,7 +1285,46 @@ class CylinderCylinderSolver {
     if (!(between.x == 0 && between.y == 0 && between.z == 0) && exact_separates(between)) return true;
     const Rational share = e.c0.radius / (e.c0.radius + e.c1.radius);
     if (exact_overlaps(c0 + share * between) || exact_overlaps(c0 + between / Rational(2))) return true;
-    return end_disc_witness(0) || end_disc_witness(1);
+    return end_disc_witness(0) || end_disc_witness(1) || tube_shift_witness(c1, c0, 1) || tube_shift_witness(c0, c1, 0) ||
+           mid_plane_witness();
+  }
+
+  // Points of j's tube beside the closest point c_j of its axis to i's: X = c_j + s w, w the part
+  // orthogonal to A_j of A_i, -A_i or c_i - c_j, s = r_j / (2 max |w_k|) and s / 2 (so
+  // |s w| <= r_j sqrt(3) / 2 < r_j: X is inside j's tube when c_j is interior to its axis
+  // segment). They find the overlap of a thin cylinder whose tube, not its axis, reaches into the
+  // other's slab (the sliver between a cap plane and the side of a tube it crosses).
+  bool tube_shift_witness(const Point3<Rational>& cj_point, const Point3<Rational>& ci_point, int j) {
+    const auto [cj, ci, Aj, Ai, AAj, AAi] = roles(j);
+    for (const Vec3<Rational>& d : {Ai, Vec3<Rational>(-Ai), Vec3<Rational>(ci_point - cj_point)}) {
+      const Vec3<Rational> w = AAj * d - dot(d, Aj) * Aj;
+      Rational w_max = 0;
+      for (const Rational* q : {&w.x, &w.y, &w.z}) w_max = std::max(w_max, *q < 0 ? Rational(-*q) : *q);
+      if (w_max == 0) continue;
+      const Rational s = cj.radius / (2 * w_max);
+      if (exact_overlaps(cj_point + s * w) || exact_overlaps(cj_point + (s / Rational(2)) * w)) return true;
+    }
+    return false;
+  }
+
+  // Points of the line where the mid-planes (X - m_i).A_i = 0 of the two slabs meet (A0 x A1 != 0):
+  // on it, |X - m_i| is X's distance from axis i, so X is interior to both when
+  // |X - m_i| < r_i for both. Candidates: the points of the line nearest m0 and m1, and the
+  // r0 : r1 point between them. They decide two flat cylinders (radius far above height) whose
+  // slabs cross inside both tubes, however far from the axes.
+  bool mid_plane_witness() {
+    const CylinderPair<Rational>& e = exact();
+    const Vec3<Rational> L = cross(e.A0, e.A1);
+    if (L.x == 0 && L.y == 0 && L.z == 0) return false;
+    const Rational LL = dot(L, L), A01 = dot(e.A0, e.A1);
+    const Point3<Rational> m0 = e.c0.p0 + e.A0 / Rational(2), m1 = e.c1.p0 + e.A1 / Rational(2);
+    const Rational h0 = dot(e.A0, m0), h1 = dot(e.A1, m1);
+    const Point3<Rational> X0 = ((h0 * e.AA1 - h1 * A01) / LL) * e.A0 + ((h1 * e.AA0 - h0 * A01) / LL) * e.A1;  // on both planes
+    const Rational t0 = dot(m0 - X0, L) / LL, t1 = dot(m1 - X0, L) / LL;
+    const Rational share = e.c0.radius / (e.c0.radius + e.c1.radius);
+    for (const Rational& t : {t0, t1, Rational(t0 + share * (t1 - t0))})
+      if (exact_overlaps(X0 + t * L)) return true;
+    return false;
   }
 
   // Corner candidates (detail/cylinder_corner_plane.hpp), for each cylinder i against the other,
@@ -1393,6 +1442,7 @@ class CylinderCylinderSolver {
       const Point3<Rational>& E = far_end ? cj.p1 : cj.p0;
       if (classify_point(E, ci) == Side::outside) continue;
       const Vec3<Rational> out = far_end ? Aj : Vec3<Rational>(-Aj);  // out of j at E
+      if (deep_end_witness(E, out, ci, Ai, AAi, AAj)) return true;
       const Vec3<Rational> towards_axis = (mi - E) - (dot(mi - E, Ai) / dot(Ai, Ai)) * Ai;
       for (const Vec3<Rational>& d : {Ai, Vec3<Rational>(-Ai), towards_axis}) {
         const Vec3<Rational> w = AAj * d - dot(d, Aj) * Aj;
@@ -1409,18 +1459,113 @@ class CylinderCylinderSolver {
     return false;
   }
 
-  // An input-frame rational direction or point, checked in Gmpq; decides when it proves.
+  // floor(log2) (within a few) of a lower bound on the distance of Y from the boundary of
+  // cylinder c when Y is strictly inside it: the least of its distances to the cap planes,
+  // m / |A| with m = min(u, A.A - u), u = (Y - p0).A, and to the wall,
+  // r - |x| / |A| >= (r^2 A.A - |x|^2) / (2 r A.A) with x = (Y - p0) x A; nullopt otherwise.
+  static std::optional<long> depth_binade(const Point3<Rational>& Y, const Cylinder<Rational>& c, const Vec3<Rational>& A,
+                                          const Rational& AA) {
+    const Vec3<Rational> v = Y - c.p0;
+    const Rational u = dot(v, A), m = std::min(u, Rational(AA - u));
+    const Vec3<Rational> x = cross(v, A);
+    const Rational tube = c.radius * c.radius * AA - dot(x, x);
+    if (!(m > 0) || !(tube > 0)) return std::nullopt;
+    return std::min(binade(m) - binade(AA) / 2, binade(tube) - binade(AA) - binade(c.radius) - 1);
+  }
+
+  // Y + 2^-k V for the k that makes |2^-k V| a few binades below 2^depth, and 16 binades further
+  // (candidates only: each point is checked exactly).
+  bool stepped_witness(const Point3<Rational>& Y, const Vec3<Rational>& V, const Rational& VV, long depth) {
+    const long k = std::max(1L, binade(VV) / 2 - depth + 4);
+    for (const long shift : {k, k + 16})
+      if (exact_overlaps(Y + V.map([shift](const Rational& q) { return times_two_power(q, -shift); }))) return true;
+    return false;
+  }
+
+  // An end E of j strictly inside i: E - eta A (A out of j at E) is on j's open axis segment for
+  // 0 < eta < 1 and inside i while eta |A| is below E's depth in i (depth_binade). It decides an
+  // end poking 2^-100 or 2^-1000 into the other cylinder, whatever the sizes.
+  bool deep_end_witness(const Point3<Rational>& E, const Vec3<Rational>& out, const Cylinder<Rational>& ci, const Vec3<Rational>& Ai,
+                        const Rational& AAi, const Rational& AAj) {
+    const std::optional<long> depth = depth_binade(E, ci, Ai, AAi);
+    return depth && stepped_witness(E, -out, AAj, *depth);
+  }
+
+  // Points of a cap disk of i strictly inside j, pushed into i: on the cap plane through the end
+  // E (inward normal n = +-A_i), Y is the point where j's axis line crosses it, or the point
+  // nearest E of the line where it meets j's mid-plane. When Y is in the open disk (|Y - E| <
+  // r_i) and strictly inside j, Y + eta n is interior to both for eta |A_i| below both Y's depth
+  // in j and r_i - |Y - E| >= (r_i^2 - |Y - E|^2) / (2 r_i). They decide flat cylinders whose
+  // slabs overlap only far from the axes, beside a cap of one of them.
+  // Once per query, after the corner candidates (they cost a few exact checks of large numbers,
+  // which most pairs reaching the exact candidates do not need).
+  bool cap_disk_candidates() {
+    if (cap_disks_tried_) return false;
+    cap_disks_tried_ = true;
+    return cap_disk_witness(0) || cap_disk_witness(1);
+  }
+  bool cap_disk_witness(int i) {
+    const auto [ci, cj, Ai, Aj, AAi, AAj] = roles(i);
+    const Point3<Rational> mj = cj.p0 + Aj / Rational(2);
+    for (const bool far_end : {false, true}) {
+      const Point3<Rational>& E = far_end ? ci.p1 : ci.p0;
+      const Vec3<Rational> n = far_end ? Vec3<Rational>(-Ai) : Ai;  // into i
+      std::array<std::optional<Point3<Rational>>, 2> Y;
+      const Rational a = dot(Aj, Ai);
+      if (a != 0) Y[0] = cj.p0 + (dot(E - cj.p0, Ai) / a) * Aj;  // j's axis line on the cap plane
+      const Vec3<Rational> L = cross(Ai, Aj);
+      if (!(L.x == 0 && L.y == 0 && L.z == 0)) {
+        // The line {(X - E).A_i = 0} n {(X - m_j).A_j = 0}: a point X0 of it, then the nearest to E.
+        const Rational LL = dot(L, L), h0 = dot(Ai, E), h1 = dot(Aj, mj);
+        const Point3<Rational> X0 = ((h0 * AAj - h1 * a) / LL) * Ai + ((h1 * AAi - h0 * a) / LL) * Aj;
+        Y[1] = X0 + (dot(E - X0, L) / LL) * L;
+      }
+      for (const std::optional<Point3<Rational>>& y : Y) {
+        if (!y) continue;
+        const Vec3<Rational> radial = *y - E;
+        const Rational disk = ci.radius * ci.radius - dot(radial, radial);
+        if (!(disk > 0)) continue;
+        const std::optional<long> depth = depth_binade(*y, cj, Aj, AAj);
+        if (!depth) continue;
+        if (stepped_witness(*y, n, AAi, std::min(*depth, binade(disk) - binade(ci.radius) - 1))) return true;
+      }
+    }
+    return false;
+  }
+
+  // An input-frame rational direction or point, checked exactly; decides when it proves. With a
+  // ring frame the check runs there, without a gcd: D as the parallel integer direction
+  // (ring_direction), X = U / q (U integers, q > 0 the least common multiple of its denominators)
+  // as the homogeneous ring point n / q, n = s U, tested against the ring cylinders scaled by q
+  // (every slack of classify_point is homogeneous in the lengths). Else in Gmpq. On input of
+  // thousands of bits the Gmpq checks spent most of their time in gcds.
   bool exact_separates(Vec3<Rational> D) {
     ++result_.counters.directions_checked;
     ++result_.counters.exact_checks;
     last_check_ = CylinderArithmetic::exact;
-    return separation_sign(exact(), D) == CGAL::POSITIVE && separated_by(std::move(D));
+    const CGAL::Sign sign = ring() ? separation_sign(ring()->pair, ring_direction(D)) : separation_sign(exact(), D);
+    return sign == CGAL::POSITIVE && separated_by(std::move(D));
   }
   bool exact_overlaps(Point3<Rational> X) {
     ++result_.counters.points_checked;
     ++result_.counters.exact_checks;
     last_check_ = CylinderArithmetic::exact;
-    return strictly_inside_both(exact(), X) && overlapping_at(std::move(X));
+    return (ring() ? ring_strictly_inside_both(X) : strictly_inside_both(exact(), X)) && overlapping_at(std::move(X));
+  }
+  bool ring_strictly_inside_both(const Point3<Rational>& X) {
+    const RingFrame& f = *ring();
+    CGAL::Gmpz q = 1, u;
+    for (std::size_t k = 0; k < 3; ++k) mpz_lcm(q.mpz(), q.mpz(), mpq_denref(X[k].mpq()));
+    Point3<CGAL::Mpzf> n;
+    for (std::size_t k = 0; k < 3; ++k) {
+      mpz_divexact(u.mpz(), q.mpz(), mpq_denref(X[k].mpq()));
+      mpz_mul(u.mpz(), u.mpz(), mpq_numref(X[k].mpq()));
+      n[k] = mpzf_times_two_power(mpzf_from_integer(u), f.e);
+      if (f.L != 1) n[k] = n[k] * f.L_mpzf;
+    }
+    const CGAL::Mpzf w = mpzf_from_integer(q);
+    const auto scaled = [&w](const Cylinder<CGAL::Mpzf>& c) { return Cylinder<CGAL::Mpzf>{w * c.p0, w * c.p1, w * c.radius}; };
+    return classify_point(n, scaled(f.pair.c0)) == Side::inside && classify_point(n, scaled(f.pair.c1)) == Side::inside;
   }
 
   // The best point of the segment between the midpoints, X = m0 + t T / 2 with t = s1 / (s0 + s1),
@@ -1502,7 +1647,7 @@ class CylinderCylinderSolver {
   bool arbitrary_precision() {
     begin(CylinderStage::gmpfr);
     if (options_.max_precision < 0) return pass();
-    if (exact_candidates() || corner_candidates(kCornerMaxPrecision)) return true;
+    if (exact_candidates() || corner_candidates(kCornerMaxPrecision) || cap_disk_candidates()) return true;
     const long span = input_span_bits();
     const long heuristic_limit = options_.max_precision > 0 ? options_.max_precision : 4 * span + 1024;
     long first = 128;
@@ -1594,8 +1739,10 @@ class CylinderCylinderSolver {
   }
 
   // Before the touching and Gmpfr stages, for input spanning over 256 binades, in this order:
-  // 1. the exact candidates (they decide crossing walls at any distance from touching, cheaply)
-  //    and the corner candidates up to 1,024 bits (stage gmpfr; see both);
+  // 1. the exact candidates (they decide crossing walls at any distance from touching, cheaply),
+  //    the axis and segment witnesses of the Gmpfr rounds at the input's span plus 128 bits (a
+  //    needle through the other cylinder: the interval of its axis inside the other is about
+  //    2^-span of its length), and the corner candidates up to 1,024 bits (stage gmpfr);
   // 2. when the pair has a ring frame, the touching proofs (stage touching_exact);
   // 3. the corner candidates up to 4,096 bits, from where 1,024 stopped them;
   // 4. short fast runs of the point and direction searches (128 bits, 24 steps each) in the
@@ -1605,23 +1752,30 @@ class CylinderCylinderSolver {
   //    the Gmpfr stage would spend tens or hundreds of milliseconds.
   // Steps 3 and 4 cannot decide a touching pair, so its proofs come before them: a touching
   // pair costs the candidates to 1,024 bits and its proof, and a sliver (an overlap or gap 2^-800
-  // thin, for which the candidates need up to 3,000 bits) pays for failed touching proofs. In
-  // Gmpq (no ring frame) the rim-contact proofs of a pair spanning 2,000 binades cost several
-  // times the candidates (their gcds), so there they keep their place after step 4.
+  // thin, for which the candidates need up to 3,000 bits) pays for failed touching proofs.
+  // Without a ring frame (rational input whose denominators' lcm exceeds 4,096 bits) the proofs
+  // run in Gmpq and cost several times the candidates (their gcds), so there they keep their
+  // place after step 4.
   bool ellipsoid_probe() {
     if (input_span_bits() <= 256) return false;
     const CylinderPair<Rational>& e = exact();
     if (e.T.x == 0 && e.T.y == 0 && e.T.z == 0) return false;
     begin(CylinderStage::gmpfr);
-    if (exact_candidates() || corner_candidates(kCornerFirstCap)) return true;
+    if (exact_candidates() || axis_candidates() || corner_candidates(kCornerFirstCap)) return true;
     if (ring() && touching_exact()) return true;
     begin(CylinderStage::gmpfr);
-    if (corner_candidates(kCornerMaxPrecision)) return true;
+    if (corner_candidates(kCornerMaxPrecision) || cap_disk_candidates()) return true;
     switch_stage(CylinderStage::ellipsoid);
     result_.ellipsoid_precision = 128;
     ellipsoid_problems();
     return point_run(*point_problem_, EllipsoidMode::fast, 128, 24) || direction_run(*direction_problem_, EllipsoidMode::fast, 128, 24) ||
            pass();
+  }
+
+  // The Gmpfr rounds' axis and segment witnesses (checked exactly) at one precision.
+  bool axis_candidates() {
+    const long p = input_span_bits() + 128;
+    return axis_witness(p, 0) || axis_witness(p, 1) || segment_witness(p);
   }
 
   bool point_run(const PointProblem& points, EllipsoidMode mode, long p, long steps, const std::array<Rational, 3>* start = nullptr,
@@ -1702,6 +1856,7 @@ class CylinderCylinderSolver {
   std::array<std::optional<CornerResume>, 2> corner_resume_;
   bool touching_tried_ = false;  // touching_exact() ran
   bool exact_candidates_tried_ = false;
+  bool cap_disks_tried_ = false;
   std::optional<CylinderPair<dd_real>> dd_pair_;  // world_pair<dd_real>() of rational input
   std::optional<Vec3<double>> optimum_;
   std::optional<Point3<double>> optimum_point_;

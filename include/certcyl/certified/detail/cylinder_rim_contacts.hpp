@@ -61,6 +61,8 @@
 #include <gmp.h>
 
 #include <algorithm>
+#include <array>
+#include <concepts>
 #include <cstdint>
 #include <optional>
 #include <utility>
@@ -82,44 +84,55 @@ inline std::optional<Rational> rational_sqrt(const Rational& q) {
   return Rational(rn, rd);
 }
 
-// ---- univariate polynomials over Q: coefficients from degree 0 up, no trailing zero ------------
+// ---- univariate polynomials over Q or Z: coefficients from degree 0 up, no trailing zero -------
+template <class C>
+concept PolynomialCoefficient = std::same_as<C, Rational> || std::same_as<C, CGAL::Gmpz>;
 using RationalPolynomial = std::vector<Rational>;
+using IntegerPolynomial = std::vector<CGAL::Gmpz>;
 
-inline RationalPolynomial trimmed(RationalPolynomial f) {
+template <PolynomialCoefficient C>
+std::vector<C> trimmed(std::vector<C> f) {
   while (!f.empty() && f.back() == 0) f.pop_back();
   return f;
 }
 
-inline RationalPolynomial operator+(const RationalPolynomial& f, const RationalPolynomial& g) {
-  RationalPolynomial h(std::max(f.size(), g.size()), Rational(0));
+template <PolynomialCoefficient C>
+std::vector<C> operator+(const std::vector<C>& f, const std::vector<C>& g) {
+  std::vector<C> h(std::max(f.size(), g.size()), C(0));
   for (std::size_t i = 0; i < f.size(); ++i) h[i] += f[i];
   for (std::size_t i = 0; i < g.size(); ++i) h[i] += g[i];
   return trimmed(std::move(h));
 }
 
-inline RationalPolynomial operator*(const Rational& c, const RationalPolynomial& f) {
-  RationalPolynomial h(f);
-  for (Rational& x : h) x *= c;
+template <PolynomialCoefficient C>
+std::vector<C> operator*(const C& c, const std::vector<C>& f) {
+  std::vector<C> h(f);
+  for (C& x : h) x *= c;
   return trimmed(std::move(h));
 }
 
-inline RationalPolynomial operator-(const RationalPolynomial& f, const RationalPolynomial& g) { return f + Rational(-1) * g; }
+template <PolynomialCoefficient C>
+std::vector<C> operator-(const std::vector<C>& f, const std::vector<C>& g) {
+  return f + C(-1) * g;
+}
 
-inline RationalPolynomial operator*(const RationalPolynomial& f, const RationalPolynomial& g) {
+template <PolynomialCoefficient C>
+std::vector<C> operator*(const std::vector<C>& f, const std::vector<C>& g) {
   if (f.empty() || g.empty()) return {};
-  RationalPolynomial h(f.size() + g.size() - 1, Rational(0));
+  std::vector<C> h(f.size() + g.size() - 1, C(0));
   for (std::size_t i = 0; i < f.size(); ++i)
     for (std::size_t j = 0; j < g.size(); ++j) h[i + j] += f[i] * g[j];
   return trimmed(std::move(h));
 }
 
-inline RationalPolynomial derivative(const RationalPolynomial& f) {
-  RationalPolynomial h;
-  for (std::size_t i = 1; i < f.size(); ++i) h.push_back(Rational(static_cast<long>(i)) * f[i]);
+template <PolynomialCoefficient C>
+std::vector<C> derivative(const std::vector<C>& f) {
+  std::vector<C> h;
+  for (std::size_t i = 1; i < f.size(); ++i) h.push_back(C(static_cast<long>(i)) * f[i]);
   return trimmed(std::move(h));
 }
 
-// Quotient and remainder of f by g != 0.
+// Quotient and remainder of f by g != 0 over Q.
 inline std::pair<RationalPolynomial, RationalPolynomial> divide(RationalPolynomial f, const RationalPolynomial& g) {
   RationalPolynomial q(f.size() >= g.size() ? f.size() - g.size() + 1 : 0, Rational(0));
   while (f.size() >= g.size() && !f.empty()) {
@@ -133,6 +146,46 @@ inline std::pair<RationalPolynomial, RationalPolynomial> divide(RationalPolynomi
   return {trimmed(std::move(q)), std::move(f)};
 }
 
+// f over Z divided by the gcd of its coefficients, with a positive leading coefficient.
+inline IntegerPolynomial primitive_part(IntegerPolynomial f) {
+  CGAL::Gmpz g(0);
+  for (const CGAL::Gmpz& c : f) mpz_gcd(g.mpz(), g.mpz(), c.mpz());
+  if (mpz_sgn(g.mpz()) == 0) return {};
+  if (mpz_sgn(f.back().mpz()) < 0) mpz_neg(g.mpz(), g.mpz());
+  for (CGAL::Gmpz& c : f) mpz_divexact(c.mpz(), c.mpz(), g.mpz());
+  return f;
+}
+
+// A remainder of f by g != 0 over Z: lc(g)^k f - q g of degree below g's, for some k >= 0 and an
+// integer polynomial q (each step scales f by lc(g) so that its leading term cancels in
+// integers). Over Q it is a nonzero constant times f mod g, so gcd(g, it) = gcd(f, g).
+inline IntegerPolynomial pseudo_remainder(IntegerPolynomial f, const IntegerPolynomial& g) {
+  const CGAL::Gmpz& lead = g.back();
+  while (f.size() >= g.size() && !f.empty()) {
+    const std::size_t shift = f.size() - g.size();
+    const CGAL::Gmpz c = f.back();
+    for (CGAL::Gmpz& x : f) x *= lead;
+    for (std::size_t i = 0; i < g.size(); ++i) f[shift + i] -= c * g[i];
+    f.pop_back();  // the leading coefficient cancels exactly
+    f = trimmed(std::move(f));
+  }
+  return f;
+}
+
+// A greatest common divisor over Q, as a primitive integer polynomial (the primitive remainder
+// sequence: Euclid's algorithm with pseudo-remainders, each made primitive so that the
+// coefficients do not grow); empty when f = g = 0.
+inline IntegerPolynomial primitive_gcd(IntegerPolynomial f, IntegerPolynomial g) {
+  f = primitive_part(std::move(f));
+  g = primitive_part(std::move(g));
+  while (!g.empty()) {
+    IntegerPolynomial r = primitive_part(pseudo_remainder(f, g));
+    f = std::move(g);
+    g = std::move(r);
+  }
+  return f;
+}
+
 // True when f is proved squarefree (no multiple root, over the complex numbers) by reduction
 // modulo the prime p = 2^32 - 5: each coefficient n/d with p not dividing d maps to n d^-1 mod p
 // (a ring homomorphism from the rationals with such denominators onto Z/p). If p divides no
@@ -140,7 +193,8 @@ inline std::pair<RationalPolynomial, RationalPolynomial> divide(RationalPolynomi
 // squarefree: a factor h of f and f' of degree >= 1, taken primitive over the p-adic integers
 // (Gauss's lemma), has a leading coefficient dividing lc(f), so h mod p keeps its degree and
 // divides both reductions. False proves nothing (the exact gcd decides).
-inline bool squarefree_mod_p(const RationalPolynomial& f) {
+template <PolynomialCoefficient C>
+bool squarefree_mod_p(const std::vector<C>& f) {
   constexpr std::uint64_t p = 4294967291u;
   if (f.size() < 2) return f.size() == 1;
   const auto power = [&](std::uint64_t b, std::uint64_t e) {
@@ -150,10 +204,14 @@ inline bool squarefree_mod_p(const RationalPolynomial& f) {
     return r;
   };
   std::vector<std::uint64_t> g;  // f mod p, lowest degree first
-  for (const Rational& c : f) {
-    const std::uint64_t d = mpz_fdiv_ui(mpq_denref(c.mpq()), p);
-    if (d == 0) return false;
-    g.push_back(mpz_fdiv_ui(mpq_numref(c.mpq()), p) * power(d, p - 2) % p);
+  for (const C& c : f) {
+    if constexpr (std::same_as<C, CGAL::Gmpz>) {
+      g.push_back(mpz_fdiv_ui(c.mpz(), p));
+    } else {
+      const std::uint64_t d = mpz_fdiv_ui(mpq_denref(c.mpq()), p);
+      if (d == 0) return false;
+      g.push_back(mpz_fdiv_ui(mpq_numref(c.mpq()), p) * power(d, p - 2) % p);
+    }
   }
   if (g.back() == 0) return false;
   std::vector<std::uint64_t> h;  // the derivative
@@ -202,77 +260,127 @@ inline std::vector<Rational> rational_roots_up_to_quadratic(const RationalPolyno
 }
 
 // |U + t V|^2 as a polynomial in t.
-inline RationalPolynomial squared_norm_along(const Vec3<Rational>& U, const Vec3<Rational>& V) {
-  return trimmed({dot(U, U), 2 * dot(U, V), dot(V, V)});
+template <PolynomialCoefficient C>
+std::vector<C> squared_norm_along(const Vec3<C>& U, const Vec3<C>& V) {
+  return trimmed(std::vector<C>{dot(U, U), C(2) * dot(U, V), dot(V, V)});
+}
+
+// The pair times the least common multiple of its denominators: integers, and the same
+// directions (a positive scale), for the candidates below.
+struct IntegerScaledPair {
+  std::array<std::array<Vec3<CGAL::Gmpz>, 2>, 2> ends;  // ends[i] = {p0_i, p1_i}
+  std::array<Vec3<CGAL::Gmpz>, 2> A;
+  std::array<CGAL::Gmpz, 2> r, AA;
+  Vec3<CGAL::Gmpz> T;
+
+  static IntegerScaledPair make(const CylinderPair<Rational>& d) {
+    using Z = CGAL::Gmpz;
+    const Z L = *denominator_lcm(d.c0, d.c1);
+    const auto integer = [&L](const Rational& q) {
+      Z n;
+      mpz_divexact(n.mpz(), L.mpz(), mpq_denref(q.mpq()));
+      mpz_mul(n.mpz(), n.mpz(), mpq_numref(q.mpq()));
+      return n;
+    };
+    IntegerScaledPair z;
+    const auto point = [&integer](const Point3<Rational>& p) { return Vec3<Z>{integer(p.x), integer(p.y), integer(p.z)}; };
+    z.ends = {{{point(d.c0.p0), point(d.c0.p1)}, {point(d.c1.p0), point(d.c1.p1)}}};
+    z.A = {d.A0.map(integer), d.A1.map(integer)};
+    z.r = {integer(d.c0.radius), integer(d.c1.radius)};
+    z.AA = {dot(z.A[0], z.A[0]), dot(z.A[1], z.A[1])};
+    z.T = d.T.map(integer);
+    return z;
+  }
+};
+
+inline Vec3<Rational> to_rational_vector(const Vec3<CGAL::Gmpz>& v) {
+  return v.map([](const CGAL::Gmpz& x) { return Rational(x); });
 }
 
 // ---- rim-wall candidates (header comment) --------------------------------------------------------
 // Normals of every rim-wall contact of the pair (rim of one cylinder, wall of the other): for
-// each wall cylinder j and each sign sigma, the rational double roots of F_sigma.
+// each wall cylinder j and each sign sigma, the rational double roots of F_sigma. In integers:
+// the pair times the least common multiple of its denominators (the same directions), the line
+// as D = T_j + t W with T_j = a_j T - (T.A_j) A_j (so D.T = k = T_j.T > 0 instead of 1), and
+// F_sigma times k^4 (a_i a_j)^2, a_i = A_i.A_i:
+//   E = a_i a_j (k - sigma l)^2 - P_i - P_j,  G = E^2 - 4 P_i P_j,
+//   P_i = 4 r_i^2 a_j |D x A_i|^2,  P_j = 4 r_j^2 a_i |D x A_j|^2,  l = D.A_i,
+// whose roots are those of F_sigma. No gcd of rationals is formed on the way (they were most of
+// the cost for input of thousands of bits), and the double roots come from a primitive
+// remainder sequence over Z.
 inline void rim_wall_normals(const CylinderPair<Rational>& d, std::vector<Vec3<Rational>>& out) {
+  using Z = CGAL::Gmpz;
+  const IntegerScaledPair z = IntegerScaledPair::make(d);
+  const Vec3<Z>& T = z.T;
+  const std::array<Vec3<Z>, 2>& A = z.A;
+  const std::array<Z, 2>&r = z.r, &AA = z.AA;
   for (int j = 0; j < 2; ++j) {
-    const Cylinder<Rational>& ci = j == 0 ? d.c1 : d.c0;  // the rim
-    const Cylinder<Rational>& cj = j == 0 ? d.c0 : d.c1;  // the wall
-    const Vec3<Rational>& Ai = j == 0 ? d.A1 : d.A0;
-    const Vec3<Rational>& Aj = j == 0 ? d.A0 : d.A1;
-    const Rational& AAi = j == 0 ? d.AA1 : d.AA0;
-    const Rational& AAj = j == 0 ? d.AA0 : d.AA1;
-    const Vec3<Rational> W = cross(Aj, d.T);
+    const int i = 1 - j;  // the rim's cylinder; j is the wall's
+    const Vec3<Z> W = cross(A[j], T);
     if (W.x == 0 && W.y == 0 && W.z == 0) continue;  // A_j parallel to T: no normal with D.A_j = 0 < D.T
-    // P: D.A_j = 0 and D.T = 1 (the part of T orthogonal to A_j, scaled; P.T = |W|^2 / AAj > 0).
-    const Vec3<Rational> Tj = AAj * d.T - dot(d.T, Aj) * Aj;
-    const Vec3<Rational> P = Tj / dot(Tj, d.T);
-    const RationalPolynomial l = trimmed({dot(P, Ai), dot(W, Ai)});
-    const RationalPolynomial pi = (4 * ci.radius * ci.radius / AAi) * squared_norm_along(cross(P, Ai), cross(W, Ai));
-    const RationalPolynomial pj = (4 * cj.radius * cj.radius / AAj) * squared_norm_along(cross(P, Aj), cross(W, Aj));
-    const RationalPolynomial four_pi_pj = Rational(4) * (pi * pj);
+    const Vec3<Z> Tj = AA[j] * T - dot(T, A[j]) * A[j];
+    const Z k = dot(Tj, T);  // = |W|^2 > 0
+    const IntegerPolynomial l = trimmed(IntegerPolynomial{dot(Tj, A[i]), dot(W, A[i])});
+    const IntegerPolynomial Pi = (Z(4) * r[i] * r[i] * AA[j]) * squared_norm_along(cross(Tj, A[i]), cross(W, A[i]));
+    const IntegerPolynomial Pj = (Z(4) * r[j] * r[j] * AA[i]) * squared_norm_along(cross(Tj, A[j]), cross(W, A[j]));
+    const IntegerPolynomial four_pi_pj = Z(4) * (Pi * Pj);
     for (const int sigma : {1, -1}) {
-      const RationalPolynomial m = RationalPolynomial{Rational(1)} - Rational(sigma) * l;  // 1 - sigma l
-      const RationalPolynomial e = m * m - pi - pj;
-      const RationalPolynomial F = e * e - four_pi_pj;
-      if (F.empty()) continue;  // sigma l = 1 and p_i = p_j: no contact for this sigma (header comment)
-      if (squarefree_mod_p(F)) continue;  // no double root
-      const RationalPolynomial H = gcd(F, derivative(F));
+      const IntegerPolynomial m = IntegerPolynomial{k} - Z(sigma) * l;  // k - sigma l
+      const IntegerPolynomial E = (AA[i] * AA[j]) * (m * m) - Pi - Pj;
+      const IntegerPolynomial G = E * E - four_pi_pj;
+      if (G.empty()) continue;  // sigma l = k and p_i = p_j: no contact for this sigma (header comment)
+      if (squarefree_mod_p(G)) continue;  // no double root
+      const IntegerPolynomial H = primitive_gcd(G, derivative(G));
       if (H.size() < 2) continue;  // no double root
-      const RationalPolynomial S = divide(H, gcd(H, derivative(H))).first;
+      RationalPolynomial Hq;
+      for (const Z& c : H) Hq.push_back(Rational(c));
+      const RationalPolynomial S = divide(Hq, gcd(Hq, derivative(Hq))).first;
       for (const Rational& t : rational_roots_up_to_quadratic(S)) {
         // The rim is the end sigma: sign(D.A_i) = sigma, else this root belongs to another factor.
-        const Rational li = dot(P, Ai) + t * dot(W, Ai);
-        if ((sigma > 0 && li > 0) || (sigma < 0 && li < 0)) out.push_back(P + t * W);
+        const Rational li = Rational(l.empty() ? Z(0) : l[0]) + t * Rational(l.size() > 1 ? l[1] : Z(0));
+        if ((sigma > 0 && li > 0) || (sigma < 0 && li < 0)) out.push_back(to_rational_vector(Tj) + t * to_rational_vector(W));
       }
     }
   }
 }
 
 // ---- rim-rim candidates (header comment) ----------------------------------------------------------
+// In integers (IntegerScaledPair): with L = A0 x A1 and Lq = L.L, the line where the cap planes
+// A0.X = h0 and A1.X = h1 meet is X = (X0 + s L) / Lq, X0 = (h0 a1 - h1 A01) A0 + (h1 a0 - h0 A01) A1
+// (a_i = A_i.A_i, A01 = A0.A1); on rim circle 0, with w = X0 - Lq e0,
+//   Lq s^2 + 2 b s + c = 0,  b = L.w,  c = |w|^2 - r0^2 Lq^2,
+// so s = (-b +- root) / Lq with root^2 = b^2 - Lq c, and U_i = Lq^2 (X - e_i) are integer vectors:
+// U_0 = Lq w + (-b +- root) L, U_1 = U_0 + Lq^2 (e0 - e1); X is on rim 1 when |U_1|^2 = r1^2 Lq^4.
 inline void rim_rim_normals(const CylinderPair<Rational>& d, std::vector<Vec3<Rational>>& out) {
-  const Vec3<Rational> L = cross(d.A0, d.A1);
+  using Z = CGAL::Gmpz;
+  const IntegerScaledPair z = IntegerScaledPair::make(d);
+  const Vec3<Z> L = cross(z.A[0], z.A[1]);
   if (L.x == 0 && L.y == 0 && L.z == 0) return;  // parallel cap planes: rims meet only in a cap-cap contact
-  const Rational LL = dot(L, L), A01 = dot(d.A0, d.A1);
-  const Rational r0r0 = d.c0.radius * d.c0.radius, r1r1 = d.c1.radius * d.c1.radius;
-  for (const Point3<Rational>* e0 : {&d.c0.p0, &d.c0.p1}) {
-    for (const Point3<Rational>* e1 : {&d.c1.p0, &d.c1.p1}) {
-      // X0: the point of the line {A0.X = h0} n {A1.X = h1} in span(A0, A1).
-      const Rational h0 = dot(d.A0, *e0), h1 = dot(d.A1, *e1);
-      const Point3<Rational> X0 = ((h0 * d.AA1 - h1 * A01) / LL) * d.A0 + ((h1 * d.AA0 - h0 * A01) / LL) * d.A1;
-      // |X0 + s L - e0|^2 = r0^2:  LL s^2 + 2 b s + c = 0.
-      const Vec3<Rational> w = X0 - *e0;
-      const Rational b = dot(L, w), c = dot(w, w) - r0r0;
-      const std::optional<Rational> root = rational_sqrt(b * b - LL * c);
-      if (!root) continue;  // no common point, or an irrational one: no rim-rim contact (theorem)
-      for (const Rational& s : {(-b + *root) / LL, (-b - *root) / LL}) {
-        const Point3<Rational> X = X0 + s * L;
-        const Vec3<Rational> u0 = X - *e0, u1 = X - *e1;
-        if (dot(u1, u1) != r1r1) continue;
-        const Vec3<Rational> D = cross(cross(d.A0, u0), cross(d.A1, u1));
+  const Z Lq = dot(L, L), A01 = dot(z.A[0], z.A[1]), Lq2 = Lq * Lq;
+  const Z r1_Lq2_squared = z.r[1] * z.r[1] * Lq2 * Lq2;
+  for (const Vec3<Z>& e0 : z.ends[0]) {
+    for (const Vec3<Z>& e1 : z.ends[1]) {
+      const Z h0 = dot(z.A[0], e0), h1 = dot(z.A[1], e1);
+      const Vec3<Z> X0 = (h0 * z.AA[1] - h1 * A01) * z.A[0] + (h1 * z.AA[0] - h0 * A01) * z.A[1];
+      const Vec3<Z> w = X0 - Lq * e0;
+      const Z b = dot(L, w), c = dot(w, w) - z.r[0] * z.r[0] * Lq2;
+      const Z disc = b * b - Lq * c;
+      if (mpz_sgn(disc.mpz()) < 0 || !mpz_perfect_square_p(disc.mpz())) continue;  // no common point, or an irrational one (theorem)
+      Z root;
+      mpz_sqrt(root.mpz(), disc.mpz());
+      for (const Z& shift : {Z(root - b), Z(-root - b)}) {
+        const Vec3<Z> U0 = Lq * w + shift * L;
+        const Vec3<Z> U1 = U0 + Lq2 * (e0 - e1);
+        if (dot(U1, U1) != r1_Lq2_squared) continue;
+        const Vec3<Z> D = cross(cross(z.A[0], U0), cross(z.A[1], U1));
         if (D.x == 0 && D.y == 0 && D.z == 0) {
           // else-branch of the header: the two normal planes coincide; the boundary rays.
-          out.push_back(u0);
-          out.push_back(-u1);
+          out.push_back(to_rational_vector(U0));
+          out.push_back(to_rational_vector(-U1));
         } else {
-          out.push_back(D);
+          out.push_back(to_rational_vector(D));
         }
-        if (*root == 0) break;  // a double root: one point
+        if (root == 0) break;  // a double root: one point
       }
     }
   }
