@@ -1298,8 +1298,7 @@ class CylinderCylinderSolver {
     const auto [cj, ci, Aj, Ai, AAj, AAi] = roles(j);
     for (const Vec3<Rational>& d : {Ai, Vec3<Rational>(-Ai), Vec3<Rational>(ci_point - cj_point)}) {
       const Vec3<Rational> w = AAj * d - dot(d, Aj) * Aj;
-      Rational w_max = 0;
-      for (const Rational* q : {&w.x, &w.y, &w.z}) w_max = std::max(w_max, *q < 0 ? Rational(-*q) : *q);
+      const Rational w_max = largest(w);
       if (w_max == 0) continue;
       const Rational s = cj.radius / (2 * w_max);
       if (exact_overlaps(cj_point + s * w) || exact_overlaps(cj_point + (s / Rational(2)) * w)) return true;
@@ -1312,14 +1311,19 @@ class CylinderCylinderSolver {
   // |X - m_i| < r_i for both. Candidates: the points of the line nearest m0 and m1, and the
   // r0 : r1 point between them. They decide two flat cylinders (radius far above height) whose
   // slabs cross inside both tubes, however far from the axes.
+  // The point of span(A, B) on the planes A.X = h and B.X = k (A x B != 0, |A x B|^2 = LL).
+  static Point3<Rational> planes_meet(const Vec3<Rational>& A, const Rational& h, const Vec3<Rational>& B, const Rational& k,
+                                      const Rational& LL) {
+    const Rational AA = dot(A, A), BB = dot(B, B), AB = dot(A, B);
+    return ((h * BB - k * AB) / LL) * A + ((k * AA - h * AB) / LL) * B;
+  }
   bool mid_plane_witness() {
     const CylinderPair<Rational>& e = exact();
     const Vec3<Rational> L = cross(e.A0, e.A1);
     if (L.x == 0 && L.y == 0 && L.z == 0) return false;
-    const Rational LL = dot(L, L), A01 = dot(e.A0, e.A1);
+    const Rational LL = dot(L, L);
     const Point3<Rational> m0 = e.c0.p0 + e.A0 / Rational(2), m1 = e.c1.p0 + e.A1 / Rational(2);
-    const Rational h0 = dot(e.A0, m0), h1 = dot(e.A1, m1);
-    const Point3<Rational> X0 = ((h0 * e.AA1 - h1 * A01) / LL) * e.A0 + ((h1 * e.AA0 - h0 * A01) / LL) * e.A1;  // on both planes
+    const Point3<Rational> X0 = planes_meet(e.A0, dot(e.A0, m0), e.A1, dot(e.A1, m1), LL);
     const Rational t0 = dot(m0 - X0, L) / LL, t1 = dot(m1 - X0, L) / LL;
     const Rational share = e.c0.radius / (e.c0.radius + e.c1.radius);
     for (const Rational& t : {t0, t1, Rational(t0 + share * (t1 - t0))})
@@ -1429,13 +1433,13 @@ class CylinderCylinderSolver {
   // out of j at E), with w the part orthogonal to A of a direction into i (A_i, -A_i, towards
   // i's axis), s = r_j / (4 max |w_k|) so that |s w| < r_j / 2 (X is interior to j for every
   // 0 < eta < 1), and eta = s max|w_k| / max|A_k| 2^-k for a few k. Each is checked exactly.
+  static Rational largest(const Vec3<Rational>& v) {
+    Rational m = 0;
+    for (const Rational* q : {&v.x, &v.y, &v.z}) m = std::max(m, *q < 0 ? Rational(-*q) : *q);
+    return m;
+  }
   bool end_disc_witness(int j) {
     const auto [cj, ci, Aj, Ai, AAj, AAi] = roles(j);
-    const auto largest = [](const Vec3<Rational>& v) {
-      Rational m = 0;
-      for (const Rational* q : {&v.x, &v.y, &v.z}) m = std::max(m, *q < 0 ? Rational(-*q) : *q);
-      return m;
-    };
     const Rational a_max = largest(Aj);
     const Point3<Rational> mi = ci.p0 + (ci.p1 - ci.p0) / Rational(2);
     for (const bool far_end : {false, true}) {
@@ -1516,8 +1520,8 @@ class CylinderCylinderSolver {
       const Vec3<Rational> L = cross(Ai, Aj);
       if (!(L.x == 0 && L.y == 0 && L.z == 0)) {
         // The line {(X - E).A_i = 0} n {(X - m_j).A_j = 0}: a point X0 of it, then the nearest to E.
-        const Rational LL = dot(L, L), h0 = dot(Ai, E), h1 = dot(Aj, mj);
-        const Point3<Rational> X0 = ((h0 * AAj - h1 * a) / LL) * Ai + ((h1 * AAi - h0 * a) / LL) * Aj;
+        const Rational LL = dot(L, L);
+        const Point3<Rational> X0 = planes_meet(Ai, dot(Ai, E), Aj, dot(Aj, mj), LL);
         Y[1] = X0 + (dot(E - X0, L) / LL) * L;
       }
       for (const std::optional<Point3<Rational>>& y : Y) {
@@ -1554,15 +1558,11 @@ class CylinderCylinderSolver {
   }
   bool ring_strictly_inside_both(const Point3<Rational>& X) {
     const RingFrame& f = *ring();
-    CGAL::Gmpz q = 1, u;
-    for (std::size_t k = 0; k < 3; ++k) mpz_lcm(q.mpz(), q.mpz(), mpq_denref(X[k].mpq()));
-    Point3<CGAL::Mpzf> n;
-    for (std::size_t k = 0; k < 3; ++k) {
-      mpz_divexact(u.mpz(), q.mpz(), mpq_denref(X[k].mpq()));
-      mpz_mul(u.mpz(), u.mpz(), mpq_numref(X[k].mpq()));
-      n[k] = mpzf_times_two_power(mpzf_from_integer(u), f.e);
-      if (f.L != 1) n[k] = n[k] * f.L_mpzf;
-    }
+    CGAL::Gmpz q;
+    const Point3<CGAL::Mpzf> n = ring_direction(X, q).map([&f](const CGAL::Mpzf& u) {  // q X, integers
+      const CGAL::Mpzf y = mpzf_times_two_power(u, f.e);
+      return f.L != 1 ? CGAL::Mpzf(y * f.L_mpzf) : y;
+    });
     const CGAL::Mpzf w = mpzf_from_integer(q);
     const auto scaled = [&w](const Cylinder<CGAL::Mpzf>& c) { return Cylinder<CGAL::Mpzf>{w * c.p0, w * c.p1, w * c.radius}; };
     return classify_point(n, scaled(f.pair.c0)) == Side::inside && classify_point(n, scaled(f.pair.c1)) == Side::inside;

@@ -185,6 +185,14 @@ inline std::optional<CGAL::Gmpz> denominator_lcm(const Cylinder<Rational>& c0, c
   return L;
 }
 
+// q L as an integer, for L a multiple of q's denominator (denominator_lcm).
+inline CGAL::Gmpz scaled_integer(const Rational& q, const CGAL::Gmpz& L) {
+  CGAL::Gmpz n;
+  mpz_divexact(n.mpz(), L.mpz(), mpq_denref(q.mpq()));
+  mpz_mul(n.mpz(), n.mpz(), mpq_numref(q.mpq()));
+  return n;
+}
+
 // True (and d set) when q is exactly a normal binary64 value (or zero) with a numerator below
 // 2^53 and a denominator 2^k: the common case of binary64 input, read from the limbs without
 // allocation or division. (Integers of 54 bits or more and subnormals are left out.)

@@ -276,12 +276,7 @@ struct IntegerScaledPair {
   static IntegerScaledPair make(const CylinderPair<Rational>& d) {
     using Z = CGAL::Gmpz;
     const Z L = *denominator_lcm(d.c0, d.c1);
-    const auto integer = [&L](const Rational& q) {
-      Z n;
-      mpz_divexact(n.mpz(), L.mpz(), mpq_denref(q.mpq()));
-      mpz_mul(n.mpz(), n.mpz(), mpq_numref(q.mpq()));
-      return n;
-    };
+    const auto integer = [&L](const Rational& q) { return scaled_integer(q, L); };
     IntegerScaledPair z;
     const auto point = [&integer](const Point3<Rational>& p) { return Vec3<Z>{integer(p.x), integer(p.y), integer(p.z)}; };
     z.ends = {{{point(d.c0.p0), point(d.c0.p1)}, {point(d.c1.p0), point(d.c1.p1)}}};

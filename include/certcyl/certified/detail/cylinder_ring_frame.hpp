@@ -74,13 +74,7 @@ struct RingFrame {
     const std::optional<CGAL::Gmpz> lcm = denominator_lcm(c0, c1, kRingFrameMaxBits);
     if (!lcm) return std::nullopt;
     const CGAL::Gmpz& L = *lcm;
-    CGAL::Gmpz n;  // one buffer for every coordinate
-    const auto to_m = [&L, &n](const Rational& q) {
-      // q L = numerator (L / denominator), an integer.
-      mpz_divexact(n.mpz(), L.mpz(), mpq_denref(q.mpq()));
-      mpz_mul(n.mpz(), n.mpz(), mpq_numref(q.mpq()));
-      return mpzf_from_integer(n);
-    };
+    const auto to_m = [&L](const Rational& q) { return mpzf_from_integer(scaled_integer(q, L)); };
     RingFrame f{CylinderPair<CGAL::Mpzf>::make(c0.map(to_m), c1.map(to_m)), L, 0};
     f.L_mpzf = mpzf_from_integer(L);
     return f;
@@ -114,17 +108,15 @@ inline std::optional<CGAL::Mpzf> mpzf_from_dyadic(const Rational& q) {
 
 // A rational direction as a parallel direction of dyadic numbers: its coordinates times the
 // least common multiple of their denominators (integers), exactly. Directions need no frame.
-inline Vec3<CGAL::Mpzf> ring_direction(const Vec3<Rational>& D) {
-  CGAL::Gmpz l = 1;
+// l is set to that least common multiple.
+inline Vec3<CGAL::Mpzf> ring_direction(const Vec3<Rational>& D, CGAL::Gmpz& l) {
+  l = 1;
   for (std::size_t i = 0; i < 3; ++i) mpz_lcm(l.mpz(), l.mpz(), mpq_denref(D[i].mpq()));
-  Vec3<CGAL::Mpzf> out;
-  for (std::size_t i = 0; i < 3; ++i) {
-    CGAL::Gmpz n;
-    mpz_divexact(n.mpz(), l.mpz(), mpq_denref(D[i].mpq()));
-    mpz_mul(n.mpz(), n.mpz(), mpq_numref(D[i].mpq()));
-    out[i] = mpzf_from_integer(n);
-  }
-  return out;
+  return D.map([&l](const Rational& q) { return mpzf_from_integer(scaled_integer(q, l)); });
+}
+inline Vec3<CGAL::Mpzf> ring_direction(const Vec3<Rational>& D) {
+  CGAL::Gmpz l;
+  return ring_direction(D, l);
 }
 
 inline Vec3<Rational> mpzf_to_rational(const Vec3<CGAL::Mpzf>& v) {
