@@ -74,7 +74,10 @@
 //                    other's deepest point in it, on quantities reduced exactly to the smaller
 //                    cylinder's scale: they decide a huge against a tiny cylinder without
 //                    precision to match their span; for input spanning over 256 binades they
-//                    run before the touching stage, with short ellipsoid runs), then the optimiser at
+//                    run before the touching stage, with short ellipsoid runs; up to 4,096 bits,
+//                    and a plane left short of bits goes on in each round below, at up to
+//                    max(64 times the ellipsoid's precision, twice the bit size of the largest
+//                    input number)), then the optimiser at
 //                    doubling precisions up to options.max_precision (by default set from the
 //                    input's span in bits); its direction
 //                    and point, converted exactly to rationals, are checked in Gmpq, and its
@@ -378,6 +381,15 @@ inline long cylinder_pair_span_bits(const CylinderPair<Rational>& e) {
   for (const Rational* q : {&e.c0.radius, &e.c1.radius, &e.A0.x, &e.A0.y, &e.A0.z, &e.A1.x, &e.A1.y, &e.A1.z, &e.T.x, &e.T.y, &e.T.z})
     if (mpq_sgn(q->mpq()) != 0) lo = std::min(lo, binade(*q));
   return std::max(0L, hi - lo + 2);
+}
+
+// The bit size of the largest input number (numerator and denominator together).
+inline long cylinder_pair_number_bits(const CylinderPair<Rational>& e) {
+  long bits = 0;
+  for (const Cylinder<Rational>* c : {&e.c0, &e.c1})
+    for (const Rational* q : {&c->p0.x, &c->p0.y, &c->p0.z, &c->p1.x, &c->p1.y, &c->p1.z, &c->radius})
+      bits = std::max(bits, static_cast<long>(mpz_sizeinbase(mpq_numref(q->mpq()), 2) + mpz_sizeinbase(mpq_denref(q->mpq()), 2)));
+  return bits;
 }
 
 // Frames. Binary64 input (the double overload, or Rational input whose every number is a
@@ -1402,7 +1414,7 @@ class CylinderCylinderSolver {
           precision = std::min(max_precision, std::max(2 * precision, needed));
           continue;  // the same plane, more bits
         }
-        if (needed > precision && max_precision < kCornerMaxPrecision) {
+        if (needed > precision) {
           corner_resume_[i] = CornerResume{y, pass, precision, needed};  // a higher cap goes on from here
           break;
         }
@@ -1656,6 +1668,11 @@ class CylinderCylinderSolver {
     if (limit == 0 && !options_.prove_touching) limit = heuristic_limit;
     const CylinderPair<Rational>& e = exact();
     const bool ellipsoid_on = !(e.T.x == 0 && e.T.y == 0 && e.T.z == 0);  // T = 0 was decided by the midpoints stage
+    // The corner planes left short of bits go on in every round, at up to 64 times the
+    // ellipsoid's precision and at least twice the bit size of the largest input number: a rim
+    // contact 2^-k deep needs about k bits, and rational input of L-bit numbers can place one
+    // 2^-L deep, where the ellipsoid rounds at that precision would cost minutes.
+    const long corner_number_cap = 2 * cylinder_pair_number_bits(e);
     // j stops after 128 2^48 = 2^55 bits (4 PiB a number): no machine gets there, and the
     // shifts below stay within a long.
     for (int j = 0; j < 49; ++j) {
@@ -1664,6 +1681,7 @@ class CylinderCylinderSolver {
       if (!heuristic && !complete) break;
       const bool gmpfr_first = ph <= 4 * pe;
       if (heuristic && gmpfr_first && gmpfr_round(ph)) return true;
+      if (corner_candidates(std::max({kCornerMaxPrecision, 64 * pe, corner_number_cap}))) return true;
       if (complete && ellipsoid_round(pe)) return true;
       if (heuristic && !gmpfr_first && gmpfr_round(ph)) return true;
     }
@@ -1793,8 +1811,8 @@ class CylinderCylinderSolver {
   }
 
   // Rounded runs refine the minorant until it cuts the centre off by more than 2^(-p/4) below
-  // 1 (it converges to phi(D_y) >= 1), as their proof needs; the cap on its precision is a
-  // safeguard that cannot change an answer.
+  // 1, as their proof needs, with no cap on its precision: it converges to phi(D_y) >= 1, so the
+  // loop ends (detail/cylinder_ellipsoid.hpp, "Termination").
   bool direction_run(const DirectionProblem& directions, EllipsoidMode mode, long p, long steps,
                      const std::array<Rational, 2>* start = nullptr, long j = 0) {
     return run_ellipsoid<2>(mode, p, steps, result_.counters.ellipsoid_steps,
@@ -1811,7 +1829,7 @@ class CylinderCylinderSolver {
                               bool cuts_off = false;
                               for (long b = bits;; b *= 2) {
                                 EllipsoidCut<2> k = directions.minorant_cut(Ds, sigma, b, p / 4, &cuts_off);
-                                if (cuts_off || b > 64 * p) return k;
+                                if (cuts_off) return k;
                               }
                             },
                             start, j);
