@@ -192,8 +192,9 @@ int main(int argc, char** argv) {
       "PATH.so (certcyl/plugin.h). The cases come from --cases FILE (`certcyl cases`) or are made as\n"
       "`certcyl cases` makes them (--query, --family, --size, --seed; a plugin without --query: every\n"
       "query it exports). Answers: separated, touching, overlapping, intersecting, undecided, invalid.\n"
-      "Writes results/<name>/ (families.csv, counterexamples.jsonl, answers.jsonl, summary.txt) and prints\n"
-      "the summary.\n"
+      "Writes results/<name>/ (families.csv, counterexamples.jsonl, answers.jsonl, summary.txt, index.html;\n"
+      "with --plugin or --exec also failure_maps/, failure_maps.csv, hunt.csv and speed.csv) and prints\n"
+      "the summary. --map-cells, --map-step and --hunt-evaluations size the failure maps and the hunt.\n"
       "Exit status: 0 every case judged, 1 otherwise (what was judged before the error is written).");
   judge->add_option("--answers", judge_options.answers_file, "The method's answers, one JSON line per case");
   judge->add_option("--exec", judge_options.exec_command, "A program answering query lines (run by /bin/sh -c)");
@@ -214,6 +215,18 @@ int main(int argc, char** argv) {
                     "Seconds --exec's program or --plugin's function may take for one answer; then it is killed,\n"
                     "the answers before it are kept and the judge exits 1 naming the line (default 60; 0: no limit)")
       ->check(finite_in(0.0, 1e6));
+  // The failure maps' and the hunt's sizes, in the ranges of the study's --config keys of the
+  // same names (map_cells, map_step, hunt_evaluations).
+  judge->add_option("--map-cells", judge_options.map_cells,
+                    "Failure maps of N x N cells, N from 2 to 1024 (--plugin and --exec; default the size's: 16 tiny,\n"
+                    "32 small, 64 default, 128 large)")
+      ->check(CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 2, 1024); }, "2..1024"));
+  judge->add_option("--map-step", judge_options.map_step, "Ulps between neighbouring cells of a map, 1 to 10^9 (default 1)")
+      ->check(CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 1, 1000000000); }, "1..10^9"));
+  judge->add_option("--hunt-evaluations", judge_options.hunt_evaluations,
+                    "Inputs the worst-input hunt evaluates per query, 1 to 10^8, a quarter of them for cylinder\n"
+                    "pairs (--plugin and --exec; default the size's: 20 tiny, 150 small, 1000 default, 5000 large)")
+      ->check(CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 1, 100000000); }, "1..10^8"));
   std::string judge_shard;
   judge->add_option("--shard", judge_shard,
                     "Judge shard i of n (i/n, 0-based: the cases whose index is i modulo n) into\n"

@@ -38,13 +38,15 @@ struct JudgeOptions {
   std::string label;             // the method's name in the results; empty: from the source
   double timeout_seconds = 60;   // --timeout; 0: no limit
   int shard_index = 0, shard_count = 1;
-  // The failure maps (judge_maps.cpp; --plugin and --exec, unsharded runs): map_cells x
-  // map_cells inputs map_step ulps apart around each degeneracy of the judged queries; -1: the
-  // size's (16 for tiny, 32 small, 64 default, 128 large), 0: none.
+  // The failure maps (judge_maps.cpp; --plugin and --exec, unsharded runs; --map-cells,
+  // --map-step): map_cells x map_cells inputs map_step ulps apart around each degeneracy of the
+  // judged queries; -1: the size's (16 for tiny, 32 small, 64 default, 128 large), 0: none
+  // (the command line gives 2 to 1024).
   int map_cells = -1;
   long map_step = 1;
-  // The hunt for the worst input (with the maps): evaluations per query (a quarter for cylinder
-  // pairs); -1: the size's (20 tiny, 150 small, 1000 default, 5000 large), 0: none.
+  // The hunt for the worst input (with the maps; --hunt-evaluations): evaluations per query (a
+  // quarter for cylinder pairs); -1: the size's (20 tiny, 150 small, 1000 default, 5000 large),
+  // 0: none (the command line gives 1 to 10^8).
   long hunt_evaluations = -1;
 };
 

@@ -527,7 +527,8 @@ void write_report_page(const std::filesystem::path& file, const Judgement& j) {
   if (std::isfinite(j.ns_per_query))
     h << "<p id=\"speed\">Speed: <b>" << fmt("%.1f", j.ns_per_query) << " ns per query</b>, " << escape(j.timing)
       << ". <a href=\"speed.csv\">speed.csv</a> holds it per query in the columns of the study's summary.csv (kind "
-         "<i>judged</i>), to draw it on the study's speed-against-error figure beside the built-in methods.</p>\n";
+         "<i>judged</i>; its last column, <i>mean_ns</i>, is this mean where summary.csv has a median), to draw it on "
+         "the study's speed-against-error figure beside the built-in methods.</p>\n";
   if (!j.failure.empty())
     h << "<p><b>Not every case was judged:</b> " << escape(j.failure) << ". The counts below are of the cases judged before.</p>\n";
   h << "<p>Contents: <a href=\"#tested\">what was tested</a>, <a href=\"#families\">failure rate per family</a>, "

@@ -217,7 +217,9 @@ double gap_size(const Case& c);
 // Writes dir/families.csv, dir/counterexamples.jsonl, dir/answers.jsonl (an answers file of
 // the answered cases, in the cases' order: {"id", "answer"} with the answer as judged),
 // dir/speed.csv (when the answers were timed: one row per query in the columns of the study's
-// summary.csv, kind "judged", median_ns the time per query), dir/summary.txt and dir/index.html
+// summary.csv, kind "judged", but for the last, mean_ns: Answers::ns_per_query, the mean time per
+// query over all the cases, where the study's summary.csv has median_ns), dir/summary.txt and
+// dir/index.html
 // (write_report_page), and prints the summary table and
 // "report: shown/index.html" on `out`; `shown` is where the files will be when the command ends
 // (a shard's folder is written under a temporary name and renamed when complete).

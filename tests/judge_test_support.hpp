@@ -1,6 +1,7 @@
 // Helpers of the judge's command tests (test_judge, test_judge_maps): a scratch folder per test
 // case, removed at the end, in which a shell command line runs with its output captured; a
-// file's text; a text's non-empty lines.
+// file's text; a text's non-empty lines; the occurrences of a string in a text. A test file
+// takes them all with `using namespace judge_test;` (fs included).
 #pragma once
 
 #include <boost/test/unit_test.hpp>
@@ -32,6 +33,13 @@ inline std::vector<std::string> lines_of(const std::string& text) {
   for (std::string l; std::getline(in, l);)
     if (!l.empty()) v.push_back(l);
   return v;
+}
+
+// The occurrences of `what` in `text` (overlapping ones counted).
+inline std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
 }
 
 struct Run {

@@ -31,12 +31,8 @@
 #include "study_methods.hpp"
 
 using namespace certcyl;
+using namespace judge_test;
 using json = nlohmann::json;
-namespace fs = std::filesystem;
-using judge_test::lines_of;
-using judge_test::Run;
-using judge_test::Scratch;
-using judge_test::slurp;
 
 namespace {
 
@@ -244,16 +240,11 @@ BOOST_AUTO_TEST_CASE(report_page_is_self_contained_and_names_the_failures) {
     const std::string row = std::string(fails ? "<tr class=\"wrong\">" : "<tr>") + "<td>" + family + "</td>";
     BOOST_TEST(page.find(row) != std::string::npos, row);
   }
-  auto occurrences = [&](const std::string& what) {
-    std::size_t n = 0;
-    for (std::size_t at = page.find(what); at != std::string::npos; at = page.find(what, at + 1)) ++n;
-    return n;
-  };
   const std::size_t figures = std::min<std::size_t>(5, meeting_inputs.size());
   BOOST_TEST(figures > 0u);
-  BOOST_TEST(occurrences("<figure class=\"counterexample\"") == figures);
-  BOOST_TEST(occurrences("<svg class=\"view\"") == 2 * figures);
-  BOOST_TEST(occurrences("<td class=\"answer\">separated</td>") == figures);
+  BOOST_TEST(occurrences(page, "<figure class=\"counterexample\"") == figures);
+  BOOST_TEST(occurrences(page, "<svg class=\"view\"") == 2 * figures);
+  BOOST_TEST(occurrences(page, "<td class=\"answer\">separated</td>") == figures);
 }
 
 BOOST_AUTO_TEST_CASE(method_names_with_commas_and_quotes_are_quoted_in_the_csv) {
@@ -378,6 +369,28 @@ BOOST_AUTO_TEST_CASE(coprocess_failures_keep_what_was_judged) {
   BOOST_TEST(r.err.find("answers another case") != std::string::npos, r.err);
 }
 
+BOOST_AUTO_TEST_CASE(speed_csv_holds_the_mean_time_per_query) {
+  // A program that sleeps 1 s before its first answers, then answers at once: the exchange's
+  // time per query is a mean (the 1 s spread over the n cases, so at least 1e9 / n ns on every
+  // row), never the median of the per-query times, which would be a few microseconds, and the
+  // column says so.
+  Scratch s;
+  BOOST_TEST_REQUIRE(s.run(kCertcyl + " cases --query line_cylinder --size tiny > cases.jsonl").status == 0);
+  const double n = static_cast<double>(lines_of(slurp(s / "cases.jsonl")).size());
+  BOOST_TEST_REQUIRE(n > 2);
+  // Only its first run sleeps (the program runs again for the failure maps and the hunt).
+  const std::string program = "if [ ! -e slept ]; then touch slept; sleep 1; fi; exec " + kCertcyl + " query";
+  const Run r = s.run(kCertcyl + " judge --cases cases.jsonl --exec '" + program + "'");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  const auto rows = csv_records(slurp(s.dir / "results/judge/speed.csv"));
+  BOOST_TEST_REQUIRE(rows.size() == 2u);  // the header and line_cylinder's row
+  BOOST_TEST(rows[0].back() == "mean_ns");
+  BOOST_TEST((std::find(rows[0].begin(), rows[0].end(), "median_ns") == rows[0].end()));
+  BOOST_TEST(rows[1][0] == "line_cylinder");
+  BOOST_TEST(rows[1][2] == "judged");
+  BOOST_TEST(std::stod(rows[1].back()) >= 1e9 / n, rows[1].back());
+}
+
 BOOST_AUTO_TEST_CASE(example_plugin_fails_where_a_double_test_fails) {
   Scratch s;
   const Run r = s.run(kCertcyl + " judge --plugin " CERTCYL_PLUGIN_DOUBLE " --size tiny");
@@ -397,6 +410,29 @@ BOOST_AUTO_TEST_CASE(example_plugin_fails_where_a_double_test_fails) {
   BOOST_TEST(near_tangent > 0);
   // The capsule test meets the cylinders near the caps.
   BOOST_TEST(count(csv.at({"cylinder_cylinder", "c_cap_cap"}), "false_positive") + count(csv.at({"cylinder_cylinder", "c_rim_cap"}), "false_positive") > 0);
+  // speed.csv: one row per query it exports in the study's summary.csv columns but the last,
+  // kind judged, n its certified cases, and a per-call time that is positive and below 1 ms (a
+  // double test of a few dozen operations), the same on every row.
+  const auto speed = csv_records(slurp(s.dir / "results/judge/speed.csv"));
+  BOOST_TEST_REQUIRE(speed.size() == 1u + queries.size());
+  BOOST_TEST((speed[0] == std::vector<std::string>{"query", "method", "kind", "n", "false_positive", "false_negative", "class_mismatch",
+                                                   "undecided", "error", "invalid", "disagreement_rate", "mean_ns"}));
+  for (std::size_t i = 1; i < speed.size(); ++i) {
+    const auto& row = speed[i];
+    BOOST_TEST_REQUIRE(row.size() == speed[0].size());
+    BOOST_TEST(queries.count(row[0]) == 1u, row[0]);
+    BOOST_TEST(row[1] == "plugin_double");
+    BOOST_TEST(row[2] == "judged");
+    const auto& all = csv.at({row[0], "all"});
+    BOOST_TEST(std::stol(row[3]) == count(all, "cases") - count(all, "uncertified"), row[0]);
+    BOOST_TEST(std::stol(row[4]) == count(all, "false_positive"), row[0]);
+    BOOST_TEST(std::stol(row[5]) == count(all, "false_negative"), row[0]);
+    const double ns = std::stod(row.back());
+    BOOST_TEST(ns > 0.0, row[0]);
+    BOOST_TEST(ns < 1e6, row[0]);
+    BOOST_TEST(row.back() == speed[1].back());
+  }
+  BOOST_TEST(r.out.find("speed: ") != std::string::npos, r.out);
   // Each counterexample's family is counted as failing, in the CSV and in the printed table.
   const auto cx = lines_of(slurp(s.dir / "results/judge/counterexamples.jsonl"));
   BOOST_TEST(!cx.empty());
