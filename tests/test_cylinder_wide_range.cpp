@@ -272,6 +272,31 @@ BOOST_AUTO_TEST_CASE(five_thousand_digit_pairs_are_decided) {
   }
 }
 
+// Each base contact type but `skip`, turned by a rational rotation, translated by t and moved
+// eps along its contact normal either side: the answer must be right, its certificate must pass
+// the independent re-check, and `check` asserts what a test adds. Returns the pairs checked.
+template <class Check>
+int check_moved_contacts(const Q& eps, const Vec3<Q>& t, const std::string& skip, Check&& check) {
+  const Rotation R = Rotation::from_quaternion(1, 2, 3, 4);
+  int checked = 0;
+  for (const TouchingCase& base : base_touching_cases()) {
+    if (base.name == skip) continue;
+    for (const int side : {1, -1}) {
+      const Cylinder<Q> a = move(base.a, R, t);
+      const Cylinder<Q> b = move(translate(base.b, (Q(side) * eps) * base.normal), R, t);
+      const Answer expected = side > 0 ? Answer::separated : Answer::overlapping;
+      const certcyl::CylinderCylinderResult r = certcyl::certified_cylinder_cylinder(a, b);
+      ++checked;
+      BOOST_TEST_CONTEXT(base.name << " side " << side << " stage " << to_string(r.stage)) {
+        BOOST_TEST(r.answer == expected);
+        BOOST_TEST(certcyl::recheck::check_cylinder_pair(a, b, r) == "");
+        check(r);
+      }
+    }
+  }
+  return checked;
+}
+
 // Every base contact type moved 10^-400 (far below any fixed precision: the Gmpfr rounds stop
 // near 2^-1100 for this geometry) off touching, either side, with operands of a few hundred
 // digits (turned by a rational rotation, translated by 1/3). The exact candidates decide ten of
@@ -284,24 +309,10 @@ BOOST_AUTO_TEST_CASE(five_thousand_digit_pairs_are_decided) {
 // their own below).
 BOOST_AUTO_TEST_CASE(pairs_ten_to_the_minus_400_off_touching) {
   CGAL::Gmpz z(std::string("1") + std::string(400, '0'));
-  const Q eps = Q(1) / Q(z);
-  const Rotation R = Rotation::from_quaternion(1, 2, 3, 4);
-  int checked = 0;
-  for (const TouchingCase& base : base_touching_cases()) {
-    for (const int side : {1, -1}) {
-      const Cylinder<Q> a = move(base.a, R, {Q(1, 3), 0, 0});
-      const Cylinder<Q> b = move(translate(base.b, (Q(side) * eps) * base.normal), R, {Q(1, 3), 0, 0});
-      const Answer expected = side > 0 ? Answer::separated : Answer::overlapping;
-      const certcyl::CylinderCylinderResult r = certcyl::certified_cylinder_cylinder(a, b);
-      ++checked;
-      BOOST_TEST_CONTEXT(base.name << " side " << side << " stage " << to_string(r.stage)) {
-        BOOST_TEST(r.answer == expected);
-        BOOST_TEST(certcyl::recheck::check_cylinder_pair(a, b, r) == "");
-        BOOST_TEST(r.gmpfr_precision == 0);
-        BOOST_TEST(r.counters.ellipsoid_steps == 0u);
-      }
-    }
-  }
+  const int checked = check_moved_contacts(Q(1) / Q(z), {Q(1, 3), 0, 0}, "", [](const certcyl::CylinderCylinderResult& r) {
+    BOOST_TEST(r.gmpfr_precision == 0);
+    BOOST_TEST(r.counters.ellipsoid_steps == 0u);
+  });
   BOOST_TEST(checked == 14);
 }
 
@@ -315,25 +326,9 @@ BOOST_AUTO_TEST_CASE(pairs_ten_to_the_minus_400_off_touching) {
 // and at this depth they run out of planes; the ellipsoid stage decides it in minutes (2^-4000:
 // 66 and 90 s), a known limit.
 BOOST_AUTO_TEST_CASE(rim_contacts_two_to_the_minus_5000_off_touching) {
-  const Q eps = Q(1) / Q(CGAL::Gmpz(1) << 5000);
-  const Rotation R = Rotation::from_quaternion(1, 2, 3, 4);
   const Q shift(CGAL::Gmpz(std::string("1") + std::string(60, '0')) + 7, CGAL::Gmpz(std::string("3") + std::string(59, '0')) + 1);
-  int checked = 0;
-  for (const TouchingCase& base : base_touching_cases()) {
-    if (base.name == "rim-rim") continue;
-    for (const int side : {1, -1}) {
-      const Cylinder<Q> a = move(base.a, R, {shift, Q(1, 3), 0});
-      const Cylinder<Q> b = move(translate(base.b, (Q(side) * eps) * base.normal), R, {shift, Q(1, 3), 0});
-      const Answer expected = side > 0 ? Answer::separated : Answer::overlapping;
-      const certcyl::CylinderCylinderResult r = certcyl::certified_cylinder_cylinder(a, b);
-      ++checked;
-      BOOST_TEST_CONTEXT(base.name << " side " << side << " stage " << to_string(r.stage)) {
-        BOOST_TEST(r.answer == expected);
-        BOOST_TEST(certcyl::recheck::check_cylinder_pair(a, b, r) == "");
-        BOOST_TEST(r.counters.ellipsoid_steps == 0u);
-      }
-    }
-  }
+  const int checked = check_moved_contacts(Q(1) / Q(CGAL::Gmpz(1) << 5000), {shift, Q(1, 3), 0}, "rim-rim",
+                                           [](const certcyl::CylinderCylinderResult& r) { BOOST_TEST(r.counters.ellipsoid_steps == 0u); });
   BOOST_TEST(checked == 12);
 }
 
