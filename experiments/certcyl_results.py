@@ -5,7 +5,10 @@ and paper/ share.
 
   read_csv(path)          rows of a CSV file as dicts; every path read is kept in READ (for the
                           manifests that tie figures and tables to the files they come from)
+  note_read(path)         keeps a path read otherwise (a JSON file) in READ
   sha256(path)            hex SHA-256 of a file
+  write_manifest(generator, results, out, written)
+                          OUT/manifest.json: the SHA-256 of every file in READ and in `written`
   fnum(s)                 a CSV field as a float, NaN when empty
   wilson(k, n)            the 95% Wilson score interval of k successes in n trials
   upper_median, percentile
@@ -18,7 +21,9 @@ Pure standard library (no numpy, no matplotlib), so that any script may import i
 """
 import csv
 import hashlib
+import json
 import math
+import os
 from html import escape
 
 READ = []  # every file read through read_csv or note_read, in order
@@ -42,6 +47,19 @@ def sha256(path):
         for block in iter(lambda: f.read(1 << 20), b""):
             h.update(block)
     return h.hexdigest()
+
+
+def write_manifest(generator, results, out, written):
+    """Writes out/manifest.json: the generator's name, the SHA-256 of every file in READ (keyed
+    by its path relative to `results`) and of every path in `written` (relative to `out`)."""
+    manifest = {
+        "generator": generator,
+        "inputs": {os.path.relpath(p, results): sha256(p) for p in sorted(set(READ))},
+        "outputs": {os.path.relpath(p, out): sha256(p) for p in sorted(set(written))},
+    }
+    with open(os.path.join(out, "manifest.json"), "w") as f:
+        json.dump(manifest, f, indent=1, sort_keys=True)
+        f.write("\n")
 
 
 def note_read(path):

@@ -46,7 +46,7 @@ from matplotlib.colors import ListedColormap  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import certcyl_results as cr  # noqa: E402
-from certcyl_results import QUERY_TITLES, fnum, read_csv, sha256  # noqa: E402
+from certcyl_results import QUERY_TITLES, fnum, read_csv  # noqa: E402
 
 KIND_COLOURS = {
     "certified": "black",
@@ -80,17 +80,6 @@ def save(fig, out, name, caption, rect=None, dpi=110, tight=True):
     plt.close(fig)
     FIGURES.append((name, caption))
     print(f"plot_study: {len(FIGURES)} figures, {name}.png and .pdf ({time.monotonic() - START:.1f} s)", file=sys.stderr, flush=True)
-
-
-def write_manifest(folder, out):
-    manifest = {
-        "generator": "experiments/plot_study.py",
-        "inputs": {os.path.relpath(p, folder): sha256(p) for p in sorted(set(cr.READ))},
-        "outputs": {os.path.relpath(p, out): sha256(p) for p in sorted(set(WRITTEN))},
-    }
-    with open(os.path.join(out, "manifest.json"), "w") as f:
-        json.dump(manifest, f, indent=1, sort_keys=True)
-        f.write("\n")
 
 
 def front(points):
@@ -752,7 +741,7 @@ def main():
     t_error(rows, out)
     failure_maps(folder, out)
     write_index(folder, out, summary)
-    write_manifest(folder, out)
+    cr.write_manifest("experiments/plot_study.py", folder, out, WRITTEN)
     print(f"figures written to {out}")
     return 0
 

@@ -14,25 +14,20 @@ Fails (exit status 1, one line per problem) when
   - paper.pdf is missing, older than a file it includes, or has an implausible page count
     (pdfinfo), or the LaTeX log reports undefined references or citations.
 """
-import hashlib
 import json
 import os
 import re
 import subprocess
 import sys
 
+# SHA-256 as make_tables.py and plot_study.py record it, from the module the scripts share.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "experiments"))
+from certcyl_results import sha256  # noqa: E402
+
 # The appendix carries the full proofs (completeness, touching, the filters' error bounds): 23 pages
 # at the time of writing; the limit catches a runaway table or figure, not the proofs.
 MIN_PAGES, MAX_PAGES = 6, 30
 REQUIRED_INPUTS = ["instances.csv", "inputs.csv", "summary.csv", "summary_families.csv", "hunt.csv"]
-
-
-def sha256(path):
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
 
 
 def included_files(tex):

@@ -13,30 +13,18 @@ libraries), nothing else, and writes into OUT_DIR:
                   written (relative to OUT_DIR); paper/check_paper.py compares it with the study
 Nothing here is typed by hand from a study: every number comes from those files.
 """
-import csv
-import hashlib
 import json
 import math
 import os
 import sys
 from collections import Counter, defaultdict
 
-READ = []
+# The helpers the scripts of experiments/ and paper/ share (reading CSV files and recording them
+# for the manifest, SHA-256, medians and percentiles).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "experiments"))
+from certcyl_results import fnum, note_read, percentile, read_csv, upper_median, write_manifest  # noqa: E402
+
 WRITTEN = []
-
-
-def sha256(path):
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
-
-
-def read_csv(path):
-    READ.append(path)
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
 
 
 def write(out, rel, text):
@@ -103,26 +91,6 @@ def ns_text(ns):
 
 def pct(a, b):
     return f"{100.0 * a / b:.1f}\\,\\%" if b else "--"
-
-
-def fnum(s):
-    if s in ("", None):
-        return math.nan
-    return float(s)
-
-
-def upper_median(values):
-    v = sorted(values)
-    return v[len(v) // 2] if v else math.nan
-
-
-def percentile(values, p):
-    """Nearest-rank percentile."""
-    v = sorted(values)
-    if not v:
-        return math.nan
-    k = max(0, min(len(v) - 1, math.ceil(p / 100.0 * len(v)) - 1))
-    return v[k]
 
 
 def method_tex(m):
@@ -221,7 +189,7 @@ def main():
     families = read_csv(os.path.join(res, "summary_families.csv"))
     hunt = read_csv(os.path.join(res, "hunt.csv"))
     mpath = os.path.join(res, "machine.json")
-    READ.append(mpath)
+    note_read(mpath)
     with open(mpath) as f:
         machine = json.load(f)
 
@@ -457,7 +425,7 @@ def main():
             key = name[:-4]
             jpath = os.path.join(mapdir, key + ".json")
             if os.path.exists(jpath):
-                READ.append(jpath)
+                note_read(jpath)
             methods = [c for c in mrows[0] if c not in ("i", "j", "d0_ulps", "d1_ulps", "certified", "gap_lo", "gap_hi")]
             N[f"map:{key}:cells"] = str(len(mrows))
             cert = Counter(r["certified"] for r in mrows)
@@ -552,14 +520,7 @@ def main():
 
     write(out, "numbers.tex", N.text())
 
-    manifest = {
-        "generator": "paper/make_tables.py",
-        "inputs": {os.path.relpath(p, res): sha256(p) for p in sorted(set(READ))},
-        "outputs": {os.path.relpath(p, out): sha256(p) for p in sorted(set(WRITTEN))},
-    }
-    with open(os.path.join(out, "manifest.json"), "w") as f:
-        json.dump(manifest, f, indent=1, sort_keys=True)
-        f.write("\n")
+    write_manifest("paper/make_tables.py", res, out, WRITTEN)
     print(f"make_tables: {len(N.values)} numbers and {len(WRITTEN) - 1} tables written to {out}")
     return 0
 
