@@ -1352,14 +1352,17 @@ class CylinderCylinderSolver {
   // and rises to what the gain found needs against its terms, or doubles when the gain rounds to
   // zero (at most `max_precision`; the best direction is found in closed form, a few evaluations
   // at any precision). The next plane goes through the witness found, else through the support
-  // point: up to six planes, more while each gives a witness (the planes through witnesses on a
-  // face of j's support converge, as Newton's method on i's rim circle, to where that face
-  // crosses the rim, and the wedge's curvature error with them). They decide pairs of a huge and a tiny cylinder (2^900 against 2^-900), needles
-  // against pancakes, and slivers at a rim or a cap (common interiors 2^-800 thin), whose
+  // point: up to six planes, more while each gives a witness, up to twelve at a cap of 4,096 bits
+  // and one more for each doubling of the cap; more bits for the same plane do not count as a
+  // plane (the planes through witnesses on a face of j's support converge, as Newton's method on
+  // i's rim circle, to where that face crosses the rim, and the wedge's curvature error with
+  // them: each plane needs about twice the bits of the last, and a rim-rim contact 2^-k off
+  // touching is decided at about the (log2(k) - 4)th plane). They decide pairs of a huge and a tiny
+  // cylinder (2^900 against 2^-900), needles against pancakes, and slivers at a rim or a cap (common interiors 2^-800 thin), whose
   // separating directions or common interior are far too narrow for the rounded optimiser below
   // thousands of bits. Each candidate is checked exactly. Tried once per query and cap: a call
   // with a higher cap than the last goes on where the last cap stopped a cylinder's planes (a
-  // gain it could not resolve), and skips a cylinder whose planes ended with every gain resolved
+  // gain it could not resolve, or the last plane it allowed), and skips a cylinder whose planes ended with every gain resolved
   // within the last cap (a higher cap would change at most the precision of a plane on the way;
   // the candidates are heuristics either way).
   static constexpr long kCornerFirstCap = 1024, kCornerMaxPrecision = 4096;
@@ -1368,7 +1371,8 @@ class CylinderCylinderSolver {
     const bool first_call = corner_cap_ == 0;
     corner_cap_ = max_precision;
     constexpr long first_precision = 192;
-    constexpr int max_passes = 12;
+    // Twelve planes at 4,096 bits, one more for each doubling of the cap (a plane's bits double).
+    const int max_passes = 12 + std::max(0, static_cast<int>(std::bit_width(static_cast<unsigned long>(max_precision / kCornerMaxPrecision))) - 1);
     const CylinderPair<Rational>& e = exact();
     const int larger = e.AA0 + 4 * e.c0.radius * e.c0.radius >= e.AA1 + 4 * e.c1.radius * e.c1.radius ? 0 : 1;
     for (const int i : {larger, 1 - larger}) {
@@ -1382,11 +1386,13 @@ class CylinderCylinderSolver {
         if (!corner_resume_[i]) continue;
         const CornerResume& r = *corner_resume_[i];
         y = r.y;
-        first_pass = r.pass + 1;
+        first_pass = r.pass;  // the plane short of bits, or the one after the last allowed
         precision = std::min(max_precision, std::max(2 * r.precision, r.needed));
         corner_resume_[i].reset();
       }
-      for (int pass = first_pass; pass < max_passes; ++pass) {
+      std::optional<std::pair<Point3<Rational>, long>> before;  // the last plane's point and starting precision
+      long start = precision;                                   // this plane's starting precision
+      for (int pass = first_pass; pass < max_passes;) {  // a pass is a plane; more bits for it are not a pass
         std::optional<Vec3<Rational>> D;
         std::optional<Point3<Rational>> X;
         Point3<Rational> next;
@@ -1419,7 +1425,13 @@ class CylinderCylinderSolver {
           break;
         }
         if (next == y || (pass >= 5 && !X)) break;  // beyond six planes only while witnesses come
+        // A plane is a function of its point and starting precision: back to the point of the
+        // last plane at its starting precision (so none of the two raised it), they would repeat.
+        if (before && next == before->first && precision == before->second) break;
+        before = std::pair{y, start};
         y = next;
+        start = precision;
+        if (++pass == max_passes) corner_resume_[i] = CornerResume{y, pass, precision, precision};  // a higher cap allows more
       }
     }
     return false;
