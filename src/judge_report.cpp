@@ -35,24 +35,10 @@ std::pair<double, double> wilson(std::size_t failures, std::size_t n) {
   return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
 }
 
-// One CSV field as RFC 4180 writes it: as is, or in double quotes (each quote doubled) when it
-// holds a comma, a quote, a line break or leading or trailing space. The method's name is free
-// text (a command, a label, a file's name).
-std::string csv_field(const std::string& s) {
-  const bool plain = s.find_first_of(",\"\r\n") == std::string::npos && (s.empty() || (s.front() != ' ' && s.back() != ' '));
-  if (plain) return s;
-  std::string q = "\"";
-  for (const char c : s) {
-    if (c == '"') q += '"';
-    q += c;
-  }
-  return q + '"';
-}
-
 }  // namespace
 
 std::string hunt_text(const std::string& line) {
-  const std::vector<std::string> f = detail::split(line, ',');
+  const std::vector<std::string> f = detail::split_csv(line);
   if (f.size() < 11) return line;
   std::string t = f[1] + ": ";
   if (f[4] != "1") return t + "no wrong answer found in " + f[3] + " inputs";
@@ -155,7 +141,7 @@ void write_results(const fs::path& dir, const fs::path& shown, const std::string
                 "f.pos", "f.neg", "mism.", "undec.", "error", "inval.", "uncert", "failure rate [95% CI]");
   table << line;
   for (const FamilyJudgement& n : j.rows) {
-    csv << csv_field(method) << ',' << csv_field(n.query) << ',' << csv_field(n.family) << ',' << n.cases;
+    csv << detail::csv_field(method) << ',' << detail::csv_field(n.query) << ',' << detail::csv_field(n.family) << ',' << n.cases;
     for (const char* o : kOutcomes) csv << ',' << n.at(o);
     csv << ',' << n.failures;
     std::string rate = "-";
@@ -216,7 +202,7 @@ void write_results(const fs::path& dir, const fs::path& shown, const std::string
       if (r.family != "all") continue;
       const std::size_t decided = r.certified - r.at("undecided") - r.at("error") - r.at("invalid");
       const double rate = decided > 0 ? static_cast<double>(r.failures) / static_cast<double>(decided) : 0.0;
-      speed << csv_field(r.query) << ',' << csv_field(method) << ",judged," << r.certified << ',' << r.at("false_positive") << ','
+      speed << detail::csv_field(r.query) << ',' << detail::csv_field(method) << ",judged," << r.certified << ',' << r.at("false_positive") << ','
             << r.at("false_negative") << ',' << r.at("class_mismatch") << ',' << r.at("undecided") << ',' << r.at("error") << ','
             << r.at("invalid") << ',' << detail::num(rate) << ',' << detail::num(answers.ns_per_query) << '\n';
     }

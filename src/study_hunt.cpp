@@ -145,7 +145,7 @@ std::string hunt_worst(const std::string& name, Query query, std::uint64_t seed,
   }
   std::ostringstream line;
   const bool found = best_score > -std::numeric_limits<double>::infinity();
-  line << name << ',' << to_string(query) << ',' << (found ? best_family : "") << ',' << evaluations << ',' << (found ? 1 : 0);
+  line << csv_field(name) << ',' << to_string(query) << ',' << (found ? best_family : "") << ',' << evaluations << ',' << (found ? 1 : 0);
   if (found)
     line << ',' << answer_label(best_out) << ',' << to_string(best.certified) << ',' << to_string(judge(best_out, best.certified))
          << ',' << num(best.gap_lo) << ',' << num(best.gap_hi) << ',' << x_hex(best.x);

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -39,7 +40,7 @@ using json = nlohmann::json;
 
 namespace {
 
-std::vector<std::string> fields(const std::string& line) { return cli::detail::split(line, ','); }
+std::vector<std::string> fields(const std::string& line) { return cli::detail::split_csv(line); }
 
 bool meets(char code) { return code == 't' || code == 'o' || code == 'i'; }
 
@@ -209,6 +210,35 @@ BOOST_AUTO_TEST_CASE(example_plugin_hunt_finds_a_wrong_answer) {
   // The table and the page say it.
   BOOST_TEST(r.out.find("hunt: line_cylinder: " + f[5] + " where the certified answer is " + f[6]) != std::string::npos, r.out);
   BOOST_TEST(occurrences(slurp(s.dir / "results/judge/index.html"), "<li class=\"hunt\">") == 1u);
+}
+
+BOOST_AUTO_TEST_CASE(a_label_with_commas_and_quotes_stays_one_csv_field) {
+  // A judged method's name is free text: hunt.csv, speed.csv and families.csv quote it as
+  // RFC 4180 does, so every row keeps its columns (an unquoted comma shifted hunt.csv's by one).
+  Scratch s;
+  const std::string label = "engine, \"fast\" path";
+  const Run r = s.run(std::string(CERTCYL_BIN) + " judge --plugin " CERTCYL_PLUGIN_DOUBLE " --query line_cylinder --size small --label '" +
+                      label + "'");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  const auto hunt = lines_of(slurp(s.dir / "results/judge/hunt.csv"));
+  BOOST_TEST_REQUIRE(hunt.size() == 2u);
+  BOOST_TEST(hunt[1].rfind("\"engine, \"\"fast\"\" path\",line_cylinder,", 0) == 0u, hunt[1]);
+  const auto f = fields(hunt[1]);
+  BOOST_TEST_REQUIRE(f.size() == 11u);
+  BOOST_TEST(f[0] == label);
+  BOOST_TEST(f[1] == "line_cylinder");
+  BOOST_TEST(f[4] == "1");
+  BOOST_TEST(r.out.find("hunt: line_cylinder: " + f[5] + " where the certified answer is " + f[6]) != std::string::npos, r.out);
+  for (const char* file : {"speed.csv", "families.csv"}) {
+    const auto csv = lines_of(slurp(s.dir / "results/judge" / file));
+    BOOST_TEST_REQUIRE(csv.size() >= 2u, file);
+    const std::size_t columns = fields(csv[0]).size();
+    for (std::size_t k = 1; k < csv.size(); ++k) {
+      const auto row = fields(csv[k]);
+      BOOST_TEST(row.size() == columns, file << ": " << csv[k]);
+      BOOST_TEST((std::find(row.begin(), row.end(), label) != row.end()), file << ": " << csv[k]);
+    }
+  }
 }
 
 BOOST_AUTO_TEST_CASE(a_plugin_crashing_inside_a_map_keeps_the_map) {
