@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <unistd.h>
 
-const char* certcyl_plugin_name(void) { return "crashes_on_fifth"; }
+const char* certcyl_plugin_name(void) { return "faulty_test_plugin"; }
 
 int certcyl_plugin_line_cylinder(const double origin[3], const double direction[3], const double c[7], double t[2]) {
   static int calls = 0;
