@@ -9,6 +9,9 @@ and paper/ share.
   sha256(path)            hex SHA-256 of a file
   write_manifest(generator, results, out, written)
                           OUT/manifest.json: the SHA-256 of every file in READ and in `written`
+  read_judged_speed(path) the rows of a judge's speed.csv (its method's point on the study's
+                          speed-against-error figure), checked; ValueError naming the file when
+                          it is missing or malformed
   fnum(s)                 a CSV field as a float, NaN when empty
   wilson(k, n)            the 95% Wilson score interval of k successes in n trials
   upper_median, percentile
@@ -70,6 +73,53 @@ def read_csv(path):
     READ.append(path)
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
+
+
+# The columns of a judge's speed.csv that a reader needs (src/judge_report.cpp writes them with the
+# columns of the study's summary.csv, mean_ns in place of median_ns).
+JUDGED_SPEED_COLUMNS = ("query", "method", "kind", "disagreement_rate", "mean_ns")
+
+
+def read_judged_speed(path):
+    """The rows of `path`, the speed.csv of `certcyl judge`, as dicts of strings (fields quoted as
+    RFC 4180), kept in READ. ValueError, its message naming `path`, when the file cannot be read,
+    lacks a column of JUDGED_SPEED_COLUMNS, has no row, a row of another length than the header,
+    a kind other than "judged", an empty query or method, a disagreement rate that is not a
+    number in [0, 1] or a mean_ns that is not a finite number > 0."""
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            table = list(csv.reader(f, strict=True))
+    except (OSError, UnicodeError, csv.Error) as e:
+        raise ValueError(f"{path}: cannot be read as CSV ({e})") from None
+    if not table:
+        raise ValueError(f"{path}: empty (no header line)")
+    header = table[0]
+    missing = [c for c in JUDGED_SPEED_COLUMNS if c not in header]
+    if missing:
+        raise ValueError(f"{path}: not a judge's speed.csv, no column {', '.join(missing)} (header: {','.join(header)})")
+    if len(table) == 1:
+        raise ValueError(f"{path}: no row after the header")
+    note_read(path)
+    rows = []
+    for line, fields in enumerate(table[1:], start=2):
+        if len(fields) != len(header):
+            raise ValueError(f"{path}: row {line} has {len(fields)} fields, the header {len(header)}")
+        r = dict(zip(header, fields))
+        if r["kind"] != "judged":
+            raise ValueError(f"{path}: row {line}: kind '{r['kind']}', not 'judged'")
+        if not r["query"] or not r["method"]:
+            raise ValueError(f"{path}: row {line}: empty query or method")
+        try:
+            rate, ns = float(r["disagreement_rate"]), float(r["mean_ns"])
+        except ValueError:
+            raise ValueError(f"{path}: row {line}: disagreement_rate '{r['disagreement_rate']}' or mean_ns '{r['mean_ns']}' "
+                             "is not a number") from None
+        if not 0.0 <= rate <= 1.0:
+            raise ValueError(f"{path}: row {line}: disagreement_rate {r['disagreement_rate']} is not in [0, 1]")
+        if not (math.isfinite(ns) and ns > 0.0):
+            raise ValueError(f"{path}: row {line}: mean_ns {r['mean_ns']} is not a finite number > 0")
+        rows.append(r)
+    return rows
 
 
 def fnum(s):

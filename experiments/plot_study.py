@@ -2,7 +2,7 @@
 """Figures of the robustness study, read from the CSV files of a results folder only, and the page
 that presents them.
 
-    /usr/bin/python3 experiments/plot_study.py results/<name> [--out DIR]
+    /usr/bin/python3 experiments/plot_study.py results/<name> [--out DIR] [--judged JUDGE_DIR]...
 
 Writes PNG and PDF into results/<name>/figures/ (or DIR), each sized to fit a page:
   disagreement_<query>   false positives + false negatives per method and family (heat map)
@@ -12,6 +12,11 @@ Writes PNG and PDF into results/<name>/figures/ (or DIR), each sized to fit a pa
                          only the methods on the Pareto front are labelled
   pareto_compact         the same without sweeps and the extra MPFR precisions, colour by
                          algorithm, marker by number type (legible at a page's width)
+                         --judged JUDGE_DIR (repeatable): on both, the method of each results
+                         folder of `certcyl judge` (its speed.csv) as a star with a black edge,
+                         named, in the legend, for the queries it was judged on; its time is the
+                         judge's mean per query (the exchange included), not a median per
+                         instance, and it is kept out of the Pareto front
   gap_rate_overview      disagreement rate against |gap| for the methods in hardware precision,
                          line queries pooled, triangles, cylinder pairs
   t_error                line queries: error of the entry parameter t in ulps, one panel per query
@@ -97,38 +102,118 @@ def pareto_axes(ax, query, ylabel):
     ax.grid(alpha=0.3)
 
 
-def pareto_legend(fig, axes, used, title):
-    """Blanks the unused panels, and adds the legend of method kinds and the front, and the title."""
+def pareto_legend(fig, axes, used, title, lift=0):
+    """Blanks the unused panels, and adds the legend of method kinds and the front (`lift`, a
+    fraction of the figure's height, above the bottom: the judged methods' legend below it), and
+    the title."""
     for ax in list(axes.flat)[used:]:
         ax.axis("off")
     handles = [plt.Line2D([], [], color=c, marker="o", ls="", ms=4, label=k) for k, c in KIND_COLOURS.items()]
     handles.append(plt.Line2D([], [], color="grey", lw=0.7, label="Pareto front (its methods named)"))
-    fig.legend(handles=handles, loc="lower center", ncol=7, fontsize=6, frameon=False)
+    if lift:
+        fig.legend(handles=handles, loc="lower center", ncol=7, fontsize=6, frameon=False, bbox_to_anchor=(0.5, lift))
+    else:
+        fig.legend(handles=handles, loc="lower center", ncol=7, fontsize=6, frameon=False)
     fig.suptitle(title, fontsize=8)
 
 
 def label_front(ax, pts, floor=None):
-    """Names the points `pts` ((x, y, label), drawn at max(y, floor)) beside them, to the right
-    on the left part of the axes and to the left on the right part, one name per line from the
-    highest point down (a name pushed below its point is joined to it by a thin line), so that
-    no two names overlap. Call after the axes' scales and limits are final."""
+    """Names the points `pts` ((x, y, label) or (x, y, label, style), drawn at max(y, floor))
+    beside them, to the right on the left part of the axes and to the left on the right part,
+    one name per line from the highest point down (a name pushed below its point is joined to it
+    by a thin line), so that no two names overlap; `style`, a dict, adds to the name's text
+    properties. Call after the axes' scales and limits are final."""
     ax.get_xlim()
     ax.get_ylim()
     fig = ax.figure
     step = 7.0 / (ax.get_position().height * fig.get_size_inches()[1] * 72)  # a 5 pt line and a gap
     to_axes = ax.transAxes.inverted()
     items = []
-    for x, y, label in pts:
+    for x, y, label, *style in pts:
         y = y if floor is None else max(y, floor)
         fx, fy = to_axes.transform(ax.transData.transform((x, y)))
-        items.append((fy, fx, x, y, label))
+        items.append((fy, fx, x, y, label, style[0] if style else {}))
     last = None
-    for fy, fx, x, y, label in sorted(items, key=lambda t: -t[0]):
+    for fy, fx, x, y, label, style in sorted(items, key=lambda t: -t[0]):
         ty = fy + 0.03 if last is None else min(fy + 0.03, last - step)
         last = ty
         right = fx > 0.6
         ax.annotate(label, (x, y), xytext=(fx - 0.03 if right else fx + 0.03, ty), textcoords="axes fraction", fontsize=5,
-                    ha="right" if right else "left", va="center", arrowprops={"arrowstyle": "-", "color": "grey", "lw": 0.4})
+                    ha="right" if right else "left", va="center", arrowprops={"arrowstyle": "-", "color": "grey", "lw": 0.4},
+                    **style)
+
+
+# A judged method (--judged): a star with a black edge, the first method red, the others in turn.
+JUDGED_COLOURS = ("red", "magenta", "gold", "cyan", "lime")
+JUDGED_NAME_CHARS = 30
+
+
+def read_judged(paths):
+    """The judged methods of the results folders `paths` of `certcyl judge` (or their speed.csv):
+    one dict per row of each speed.csv (query, method, x = mean_ns, y = disagreement rate,
+    source = the speed.csv, colour), a method's colour by its first appearance. ValueError
+    naming the file when a speed.csv is missing or malformed."""
+    judged, colours = [], {}
+    for p in paths:
+        path = p if os.path.isfile(p) else os.path.join(p, "speed.csv")
+        if not os.path.isfile(path):
+            raise ValueError(f"{path}: no such file (`certcyl judge` writes speed.csv for --plugin and --exec when "
+                             "every case was answered)")
+        for r in cr.read_judged_speed(path):
+            colour = colours.setdefault(r["method"], JUDGED_COLOURS[len(colours) % len(JUDGED_COLOURS)])
+            judged.append({"query": r["query"], "method": r["method"], "x": float(r["mean_ns"]),
+                           "y": float(r["disagreement_rate"]), "source": path, "colour": colour})
+    return judged
+
+
+def judged_label(method):
+    """A judged method's name on a figure: at most JUDGED_NAME_CHARS characters and an ellipsis,
+    a dollar sign shown as itself (not as matplotlib's mathematics)."""
+    name = method if len(method) <= JUDGED_NAME_CHARS else method[:JUDGED_NAME_CHARS] + "\u2026"
+    return name.replace("$", r"\$")
+
+
+def draw_judged(ax, judged, query, floor, size):
+    """Draws the judged methods' points of `query` (at max(rate, floor)), kept out of any front;
+    returns their (x, y, name, style) for label_front."""
+    names = []
+    for j in judged:
+        if j["query"] != query:
+            continue
+        ax.scatter(j["x"], max(j["y"], floor), marker="*", s=size, color=j["colour"], edgecolors="black", linewidths=0.6,
+                   zorder=5, gid="judged")
+        names.append((j["x"], j["y"], judged_label(j["method"]), {"fontweight": "bold"}))
+    return names
+
+
+def judged_legend(fig, judged, fontsize):
+    """The legend of the judged methods at the bottom of the figure, three to a line; returns the
+    fraction of the figure's height it takes (0 without judged methods: no legend)."""
+    seen = {}
+    for j in judged:
+        seen.setdefault(j["method"], j["colour"])
+    if not seen:
+        return 0
+    handles = [plt.Line2D([], [], ls="", marker="*", ms=8, markerfacecolor=c, markeredgecolor="black", markeredgewidth=0.6,
+                          label="judged: " + judged_label(m)) for m, c in seen.items()]
+    fig.legend(handles=handles, loc="lower center", ncol=min(3, len(handles)), fontsize=fontsize, frameon=False,
+               bbox_to_anchor=(0.5, 0))
+    return (0.2 * math.ceil(len(handles) / 3) + 0.05) / fig.get_size_inches()[1]
+
+
+def judged_caption(judged):
+    """The sentences a Pareto figure's caption adds for the judged methods (none without)."""
+    if not judged:
+        return ""
+    sources = {}
+    for j in judged:
+        sources.setdefault((j["method"], j["source"]), None)
+    named = "; ".join(f"{m} ({s})" for m, s in sources)
+    return (f" Stars with a black edge are methods judged by certcyl judge, named beside them and in the legend: {named}. "
+            "A judged point's rate is the judge's disagreement rate (the study's definition), but its time is its mean per query "
+            "over the judge's cases, a co-process or plugin exchange included, not the study's median per instance, so the x "
+            "positions compare different statistics. Judged points are kept out of the Pareto front: the staircase joins the "
+            "study's methods only.")
 
 
 def disagreement_tables(families, out):
@@ -236,7 +321,7 @@ def gap_rate(rows, out):
              tight=False)
 
 
-def pareto(summary, out):
+def pareto(summary, out, judged=()):
     queries = sorted({r["query"] for r in summary})
     cols = 3
     rows_n = math.ceil(len(queries) / cols)
@@ -253,22 +338,27 @@ def pareto(summary, out):
             pts.append((ns, rate, r["method"], r["kind"]))
         for ns, rate, m, kind in pts:
             ax.scatter(ns, max(rate, floor), color=KIND_COLOURS.get(kind, "grey"), s=9, linewidths=0)
+        names = draw_judged(ax, judged, q, floor, 90)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_ylim(floor / 2, 1.5)
-        # Pareto front: no other method is both faster and at most as wrong; only it is named.
+        # Pareto front: no other method is both faster and at most as wrong; only it is named
+        # (the judged methods are named too, but kept out of it).
         best = front(pts)
         if best:
             ax.step([p[0] for p in best], [max(p[1], floor) for p in best], where="post", color="grey", lw=0.7, zorder=0)
-            label_front(ax, [(p[0], p[1], p[2]) for p in best], floor)
+        names = [(p[0], p[1], p[2]) for p in best] + names
+        if names:
+            label_front(ax, names, floor)
         ax.axhline(floor, color="grey", lw=0.5, ls=":")
         pareto_axes(ax, q, f"disagreement rate (0 drawn at {floor:g})")
-    pareto_legend(fig, axes, len(queries), "speed against error (per query, every method)")
+    lift = judged_legend(fig, judged, 6)
+    pareto_legend(fig, axes, len(queries), "speed against error (per query, every method)", lift)
     save(fig, out, "pareto",
          "One panel per query, one dot per method, coloured by kind: further left is faster, lower is right more often (a rate "
          "of 0 is drawn on the dotted line); the grey staircase joins the methods no other method beats on both speed and error, "
-         "and only those are named.",
-         rect=(0, 0.05, 1, 1))
+         "and only those are named." + judged_caption(judged),
+         rect=(0, 0.05 + lift, 1, 1))
 
 
 ALGO_COLOURS = {
@@ -281,7 +371,7 @@ NT_MARKERS = {"exact": "X", "double": "o", "long_double": "s", "interval": "^", 
               "core_expr": "*", "float": "P"}
 
 
-def pareto_compact(summary, out):
+def pareto_compact(summary, out, judged=()):
     queries = [q for q in QUERY_TITLES if any(r["query"] == q for r in summary)]
     if not queries:
         return
@@ -306,6 +396,7 @@ def pareto_compact(summary, out):
                        facecolors="none" if hollow else c, edgecolors=c)
             used_algos.add(base)
             used_nts.add(nt)
+        names = draw_judged(ax, judged, q, floor, 110)
         front = sorted(p for p in pts if not any(o[0] < p[0] and o[1] <= p[1] for o in pts if o is not p))
         if front:
             ax.step([p[0] for p in front], [max(p[1], floor) for p in front], where="post", color="grey", lw=0.7, zorder=0)
@@ -313,6 +404,8 @@ def pareto_compact(summary, out):
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_ylim(floor / 2, 1)
+        if names:
+            label_front(ax, names, floor)
         ax.set_title(QUERY_TITLES[q], fontsize=8)
         ax.tick_params(labelsize=7)
         ax.grid(alpha=0.3)
@@ -326,11 +419,17 @@ def pareto_compact(summary, out):
                                markerfacecolor="none" if a in ("bullet_margin0", "fcl_mesh", "ode_mesh") else ALGO_COLOURS[a], label=a)
                     for a in ALGO_COLOURS if a in used_algos]
     nt_handles = [plt.Line2D([], [], color="grey", marker=m, ls="", ms=5, label=n) for n, m in NT_MARKERS.items() if n in used_nts]
-    fig.legend(handles=algo_handles + nt_handles, loc="lower center", ncol=7, fontsize=6.2, frameon=False)
+    lift = judged_legend(fig, judged, 6.2)
+    if lift:
+        fig.legend(handles=algo_handles + nt_handles, loc="lower center", ncol=7, fontsize=6.2, frameon=False,
+                   bbox_to_anchor=(0.5, lift))
+    else:
+        fig.legend(handles=algo_handles + nt_handles, loc="lower center", ncol=7, fontsize=6.2, frameon=False)
     save(fig, out, "pareto_compact",
          "The same speed against error without the sweeps and the extra MPFR precisions: colour is the algorithm, marker the "
-         "number type (hollow: a peer library's variant), so the cost of each number type reads along a colour.",
-         rect=(0, 0.1, 1, 1), dpi=150)
+         "number type (hollow: a peer library's variant), so the cost of each number type reads along a colour."
+         + judged_caption(judged),
+         rect=(0, 0.1 + lift, 1, 1), dpi=150)
 
 
 def gap_rate_overview(rows, out):
@@ -721,22 +820,47 @@ def write_index(folder, out, summary):
 def main():
     args = sys.argv[1:]
     out = None
-    if len(args) == 3 and args[1] == "--out":
-        out = args[2]
-    elif len(args) != 1:
+    positional, judged_dirs = [], []
+    while args:
+        a = args.pop(0)
+        if a in ("--out", "--judged") and args:
+            value = args.pop(0)
+            if a == "--out" and out is None:
+                out = value
+            elif a == "--judged":
+                judged_dirs.append(value)
+            else:
+                positional = []  # --out twice
+                break
+        elif a.startswith("--"):
+            positional = []
+            break
+        else:
+            positional.append(a)
+    if len(positional) != 1:
         print(__doc__)
         return 2
-    folder = args[0]
+    folder = positional[0]
+    try:
+        judged = read_judged(judged_dirs)
+    except ValueError as e:
+        print(f"plot_study: --judged: {e}", file=sys.stderr)
+        return 1
     if out is None:
         out = os.path.join(folder, "figures")
     os.makedirs(out, exist_ok=True)
     rows = read_csv(os.path.join(folder, "instances.csv"))
     summary = read_csv(os.path.join(folder, "summary.csv"))
     families = read_csv(os.path.join(folder, "summary_families.csv"))
+    studied = {r["query"] for r in summary}
+    for j in judged:
+        if j["query"] not in studied:
+            print(f"plot_study: --judged: {j['source']}: query {j['query']} is not in the study's summary.csv, "
+                  f"{j['method']} not drawn for it", file=sys.stderr)
     disagreement_tables(families, out)
     gap_rate(rows, out)
-    pareto(summary, out)
-    pareto_compact(summary, out)
+    pareto(summary, out, judged)
+    pareto_compact(summary, out, judged)
     gap_rate_overview(rows, out)
     t_error(rows, out)
     failure_maps(folder, out)
