@@ -1357,14 +1357,15 @@ class CylinderCylinderSolver {
   // plane (the planes through witnesses on a face of j's support converge, as Newton's method on
   // i's rim circle, to where that face crosses the rim, and the wedge's curvature error with
   // them: each plane needs about twice the bits of the last, and a rim-rim contact 2^-k off
-  // touching is decided at about the (log2(k) - 4)th plane). They decide pairs of a huge and a tiny
-  // cylinder (2^900 against 2^-900), needles against pancakes, and slivers at a rim or a cap (common interiors 2^-800 thin), whose
-  // separating directions or common interior are far too narrow for the rounded optimiser below
-  // thousands of bits. Each candidate is checked exactly. Tried once per query and cap: a call
-  // with a higher cap than the last goes on where the last cap stopped a cylinder's planes (a
-  // gain it could not resolve, or the last plane it allowed), and skips a cylinder whose planes ended with every gain resolved
-  // within the last cap (a higher cap would change at most the precision of a plane on the way;
-  // the candidates are heuristics either way).
+  // touching is decided at about the (log2(k) - 4)th plane). They decide pairs of a huge and a
+  // tiny cylinder (2^900 against 2^-900), needles against pancakes, and slivers at a rim or a cap
+  // (common interiors 2^-800 thin), whose separating directions or common interior are far too
+  // narrow for the rounded optimiser below thousands of bits. Each candidate is checked exactly.
+  // Tried once per query and cap: a call with a higher cap than the last goes on where the last
+  // cap stopped a cylinder's planes (a gain it could not resolve, or the last plane it allowed),
+  // and skips a cylinder whose planes ended with every gain resolved within the last cap (a
+  // higher cap would change at most the precision of a plane on the way; the candidates are
+  // heuristics either way).
   static constexpr long kCornerFirstCap = 1024, kCornerMaxPrecision = 4096;
   bool corner_candidates(long max_precision) {
     if (corner_cap_ >= max_precision) return false;
