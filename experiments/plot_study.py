@@ -110,11 +110,15 @@ def pareto_legend(fig, axes, used, title, lift=0):
         ax.axis("off")
     handles = [plt.Line2D([], [], color=c, marker="o", ls="", ms=4, label=k) for k, c in KIND_COLOURS.items()]
     handles.append(plt.Line2D([], [], color="grey", lw=0.7, label="Pareto front (its methods named)"))
-    if lift:
-        fig.legend(handles=handles, loc="lower center", ncol=7, fontsize=6, frameon=False, bbox_to_anchor=(0.5, lift))
-    else:
-        fig.legend(handles=handles, loc="lower center", ncol=7, fontsize=6, frameon=False)
+    bottom_legend(fig, handles, 6, lift)
     fig.suptitle(title, fontsize=8)
+
+
+def bottom_legend(fig, handles, fontsize, lift):
+    """The legend of `handles` at the bottom centre of the figure, seven to a line, `lift` (a
+    fraction of the figure's height) above the bottom when the judged methods' legend is below."""
+    anchor = {"bbox_to_anchor": (0.5, lift)} if lift else {}
+    fig.legend(handles=handles, loc="lower center", ncol=7, fontsize=fontsize, frameon=False, **anchor)
 
 
 def label_front(ax, pts, floor=None):
@@ -420,11 +424,7 @@ def pareto_compact(summary, out, judged=()):
                     for a in ALGO_COLOURS if a in used_algos]
     nt_handles = [plt.Line2D([], [], color="grey", marker=m, ls="", ms=5, label=n) for n, m in NT_MARKERS.items() if n in used_nts]
     lift = judged_legend(fig, judged, 6.2)
-    if lift:
-        fig.legend(handles=algo_handles + nt_handles, loc="lower center", ncol=7, fontsize=6.2, frameon=False,
-                   bbox_to_anchor=(0.5, lift))
-    else:
-        fig.legend(handles=algo_handles + nt_handles, loc="lower center", ncol=7, fontsize=6.2, frameon=False)
+    bottom_legend(fig, algo_handles + nt_handles, 6.2, lift)
     save(fig, out, "pareto_compact",
          "The same speed against error without the sweeps and the extra MPFR precisions: colour is the algorithm, marker the "
          "number type (hollow: a peer library's variant), so the cost of each number type reads along a colour."
@@ -823,21 +823,16 @@ def main():
     positional, judged_dirs = [], []
     while args:
         a = args.pop(0)
-        if a in ("--out", "--judged") and args:
-            value = args.pop(0)
-            if a == "--out" and out is None:
-                out = value
-            elif a == "--judged":
-                judged_dirs.append(value)
-            else:
-                positional = []  # --out twice
-                break
-        elif a.startswith("--"):
-            positional = []
+        if a == "--judged" and args:
+            judged_dirs.append(args.pop(0))
+        elif a == "--out" and args and out is None:
+            out = args.pop(0)
+        elif a.startswith("--"):  # unknown, without its value, or --out twice
+            positional = None
             break
         else:
             positional.append(a)
-    if len(positional) != 1:
+    if positional is None or len(positional) != 1:
         print(__doc__)
         return 2
     folder = positional[0]
