@@ -6,10 +6,12 @@
 #   scripts/fuzz.sh [seconds]     default 60 s per harness
 # Then the cylinder-pair harness again, for CERTCYL_FUZZ_PAIR_SECONDS (default 5 times the
 # given time), from the corpus the sanitised run left, in a second build (build-fuzz/: clang -O2,
-# UndefinedBehaviorSanitizer and libFuzzer without AddressSanitizer, assertions on): each of its
-# inputs runs two exact queries and their exact re-checks, so the sanitised build reaches a few
-# thousand inputs a minute and this one several times more.
-# Prints the executions per harness; exits non-zero if a harness found a crash, a hang (one
+# UndefinedBehaviorSanitizer and libFuzzer without AddressSanitizer, assertions on), one process
+# per core (CERTCYL_FUZZ_PAIR_WORKERS, default nproc) sharing the corpus directory (each reloads
+# what the others add), each with its own log and random seed: each of its inputs runs two exact
+# queries and their exact re-checks, so the sanitised build reaches a few thousand inputs a
+# minute and this one several times more per process.
+# Prints the executions per harness (summed over the processes); exits non-zero if a harness found a crash, a hang (one
 # input over 10 s; 60 s for cylinder pairs), a memory blow-up, a leak, undefined behaviour, a
 # wrong certified answer or an undecided cylinder pair (the input is kept in
 # build-sanitize/findings/ or build-fuzz/findings/).
@@ -22,23 +24,40 @@ build=build-sanitize
 mkdir -p "$build/findings"
 status=0
 summary=()
-# run HARNESS BUILD CORPUS SECONDS: one harness run; its executions go to the summary.
+# run HARNESS BUILD CORPUS SECONDS [PROCESSES]: one harness run (PROCESSES of them at once on the
+# same corpus, default 1, logs HARNESS.log or HARNESS.<k>.log); the executions of all go to the
+# summary.
 run() {
-  local h="$1" build="$2" work="$3" seconds="$4"
-  local log="$build/$h.log"
+  local h="$1" build="$2" work="$3" seconds="$4" processes="${5:-1}"
   # -timeout: one input taking longer than 10 s is a hang (60 s for the cylinder pairs, which run
   # without a resource limit: a pair spanning two thousand binades can take seconds under the
   # sanitizers); -rss_limit_mb: a memory blow-up.
-  timeout=10
+  local timeout=10
   [ "$h" = fuzz_cylinder_cylinder ] && timeout=60
-  if ! "$build/fuzz/$h" "$work" -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=2048 -max_len=4096 \
-      -artifact_prefix="$build/findings/$h-" -print_final_stats=1 > "$log" 2>&1; then
-    status=1
-    echo "fuzz: $h FAILED (log $log):"
-    grep -m 20 -E "ERROR|WRONG|UNDECIDED|SUMMARY|runtime error|Test unit written" "$log" || tail -20 "$log"
-  fi
-  runs=$(grep -m1 -oE "stat::number_of_executed_units: *[0-9]+" "$log" | grep -oE "[0-9]+$" || echo "?")
-  summary+=("$h ($build): $runs executions in ${seconds} s")
+  local logs=() pids=() k
+  for ((k = 1; k <= processes; ++k)); do
+    local log="$build/$h.log"
+    [ "$processes" -gt 1 ] && log="$build/$h.$k.log"
+    logs+=("$log")
+    "$build/fuzz/$h" "$work" -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb=2048 -max_len=4096 -reload=1 \
+      -artifact_prefix="$build/findings/$h-" -print_final_stats=1 > "$log" 2>&1 &
+    pids+=($!)
+  done
+  local total=0 counted=1 runs
+  for k in "${!pids[@]}"; do
+    local log="${logs[$k]}"
+    if ! wait "${pids[$k]}"; then
+      status=1
+      echo "fuzz: $h FAILED (log $log):"
+      grep -m 20 -E "ERROR|WRONG|UNDECIDED|SUMMARY|runtime error|Test unit written" "$log" || tail -20 "$log"
+    fi
+    runs=$(grep -m1 -oE "stat::number_of_executed_units: *[0-9]+" "$log" | grep -oE "[0-9]+$" || true)
+    if [ -n "$runs" ]; then total=$((total + runs)); else counted=0; fi
+  done
+  [ "$counted" = 1 ] || total="? (a process printed no count; at least $total)"
+  local each=""
+  [ "$processes" -gt 1 ] && each=" ($processes processes)"
+  summary+=("$h ($build): $total executions in ${seconds} s$each")
 }
 for h in "${harnesses[@]}"; do
   work="$build/corpus/$h"
@@ -56,6 +75,6 @@ time cmake --build "$fast" -j"$(nproc)" --target fuzz_cylinder_cylinder
 mkdir -p "$fast/findings"
 work="$fast/corpus/fuzz_cylinder_cylinder"
 rm -rf "$work" && mkdir -p "$work" && cp "$build/corpus/fuzz_cylinder_cylinder"/* "$work"/
-run fuzz_cylinder_cylinder "$fast" "$work" "$pair_seconds"
+run fuzz_cylinder_cylinder "$fast" "$work" "$pair_seconds" "${CERTCYL_FUZZ_PAIR_WORKERS:-$(nproc)}"
 printf 'fuzz: %s\n' "${summary[@]}"
 exit $status
