@@ -4,6 +4,7 @@
 #include "judge.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <stdexcept>
@@ -13,6 +14,25 @@
 
 namespace certcyl::cli {
 
+namespace {
+
+// The judged method's name goes into every CSV row, the report and the figures: a control
+// character (a newline splits a CSV record for a line-based reader) is refused, naming where the
+// name came from.
+void check_method_name(const std::string& name, const std::string& where) {
+  for (const char ch : name) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c < 0x20 || c == 0x7f) {
+      static const char hex[] = "0123456789abcdef";
+      const std::string hint = where == "--label" ? "" : " (name it with --label NAME)";
+      throw std::invalid_argument(where + ": the method's name '" + name.substr(0, name.find(ch)) + "...' holds the control character 0x" +
+                                  hex[c >> 4] + hex[c & 15] + hint);
+    }
+  }
+}
+
+}  // namespace
+
 int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
   using namespace judging;
   try {
@@ -21,6 +41,14 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
     check_folder_name(o.name, "--name");  // the results stay inside --out
     std::optional<PluginInfo> plugin;
     if (!o.plugin_file.empty()) plugin = inspect_plugin(o.plugin_file);
+    if (!o.label.empty())
+      check_method_name(o.label, "--label");
+    else if (plugin)
+      check_method_name(plugin->name, "--plugin: certcyl_plugin_name()");
+    else if (!o.exec_command.empty())
+      check_method_name(o.exec_command, "--exec");
+    else
+      check_method_name(std::filesystem::path(o.answers_file).stem().string(), "--answers");
 
     std::vector<Case> cases;
     if (!o.cases_file.empty()) {

@@ -278,6 +278,31 @@ BOOST_AUTO_TEST_CASE(method_names_with_commas_and_quotes_are_quoted_in_the_csv) 
   BOOST_TEST((exec_rows == label_rows));
 }
 
+BOOST_AUTO_TEST_CASE(method_names_with_control_characters_are_refused) {
+  // A newline or a tab in the method's name would split or shift CSV records for a line-based
+  // reader: refused before anything is judged, naming where the name came from.
+  Scratch s;
+  BOOST_TEST_REQUIRE(s.run(kCertcyl + " cases --query line_cylinder --size tiny > cases.jsonl").status == 0);
+  const Run exec = s.run(kCertcyl + " judge --cases cases.jsonl --name exec --exec '" + kCertcyl + " query --method robust_double'");
+  BOOST_TEST_REQUIRE(exec.status == 0, exec.err);
+  const std::string answers = " --cases cases.jsonl --answers results/exec/answers.jsonl";
+  const Run newline = s.run(kCertcyl + " judge" + answers + " --name nl --label \"$(printf 'two\\nlines')\"");
+  BOOST_TEST(newline.status == 1);
+  BOOST_TEST(newline.err.find("--label: the method's name 'two...' holds the control character 0x0a") != std::string::npos, newline.err);
+  const Run tab = s.run(kCertcyl + " judge" + answers + " --name tab --label \"$(printf 'a\\tb')\"");
+  BOOST_TEST(tab.status == 1);
+  BOOST_TEST(tab.err.find("holds the control character 0x09") != std::string::npos, tab.err);
+  fs::copy_file(s.dir / "results/exec/answers.jsonl", s.dir / "mine\tv2.jsonl");
+  const Run stem = s.run(kCertcyl + " judge --cases cases.jsonl --name stem --answers \"$(printf 'mine\\tv2.jsonl')\"");
+  BOOST_TEST(stem.status == 1);
+  BOOST_TEST(stem.err.find("--answers: the method's name 'mine...' holds the control character 0x09 (name it with --label NAME)") !=
+                 std::string::npos,
+             stem.err);
+  for (const char* name : {"nl", "tab", "stem"}) BOOST_TEST(!fs::exists(s.dir / "results" / name), name);
+  // The same file judged under a clean label.
+  BOOST_TEST(s.run(kCertcyl + " judge --cases cases.jsonl --name ok --label mine --answers \"$(printf 'mine\\tv2.jsonl')\"").status == 0);
+}
+
 BOOST_AUTO_TEST_CASE(bad_answers_files_name_the_line) {
   Scratch s;
   BOOST_TEST_REQUIRE(s.run(kCertcyl + " cases --query line_cylinder --family tangent --size 2 > cases.jsonl").status == 0);
