@@ -6,7 +6,11 @@
 //
 // One family per base configuration and pair of scales: its binary64 pairs (BM_wide/...) or its
 // rational pairs (BM_wide_rational/...: turned by a rational rotation, translated by 2^900 + 1/3
-// and divided by 10^500 + 1), each query in both orders. Per family: the time of one call on each
+// and divided by 10^500 + 1), each query in both orders. BM_deep/<contact> k=<k>: each base
+// contact type turned by the rational rotation of quaternion (1, 2, 3, 4), translated by
+// (10^60 + 7) / (3 10^59 + 1) and 1/3, and moved 2^-k apart and 2^-k into overlap along its
+// contact normal, k = 100, 1000, 5000, 10000 (rim-rim k = 5000 took minutes before the corner
+// planes could go on between the rounds). Per family: the time of one call on each
 // pair (one call: the slowest pairs took seconds before the corner candidates), as mean, median
 // and max, the slowest pair, the answers and the stages that decided. The exit status is 1 when
 // an answer contradicts the construction or is undecided.
@@ -51,6 +55,30 @@ std::vector<Family> families(bool binary64) {
     const auto [it, inserted] = index.emplace(name, out.size());
     if (inserted) out.push_back({name, {}});
     out[it->second].cases.push_back(&c);
+  }
+  return out;
+}
+
+// The deep families (header comment): one per contact type and k, each pair's answer known by
+// construction (apart: separated; into each other: overlapping).
+std::vector<Family> deep_families() {
+  static std::vector<WideCase> cases;
+  const cctest::Rotation R = cctest::Rotation::from_quaternion(1, 2, 3, 4);
+  const cctest::Q shift(CGAL::Gmpz(std::string("1") + std::string(60, '0')) + 7, CGAL::Gmpz(std::string("3") + std::string(59, '0')) + 1);
+  const cctest::Vec3<cctest::Q> t{shift, cctest::Q(1, 3), 0};
+  const long ks[] = {100, 1000, 5000, 10000};
+  for (const cctest::TouchingCase& base : cctest::base_touching_cases())
+    for (const long k : ks)
+      for (const int side : {1, -1}) {
+        const cctest::Q eps = cctest::two_power(-k);
+        cases.push_back({base.name + " k=" + std::to_string(k) + (side > 0 ? " d=+" : " d=-"), cctest::move(base.a, R, t),
+                         cctest::move(cctest::translate(base.b, (cctest::Q(side) * eps) * base.normal), R, t),
+                         side > 0 ? certcyl::Answer::separated : certcyl::Answer::overlapping, false});
+      }
+  std::vector<Family> out;
+  for (const WideCase& c : cases) {
+    if (out.empty() || out.back().name != family_name(c)) out.push_back({family_name(c), {}});
+    out.back().cases.push_back(&c);
   }
   return out;
 }
@@ -105,6 +133,11 @@ const bool registered = [] {
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1);
   }
+  static const std::vector<Family> deep = deep_families();
+  for (const Family& f : deep)
+    benchmark::RegisterBenchmark(("BM_deep/" + f.name).c_str(), [&f](benchmark::State& s) { run_family(s, f); })
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1);
   return true;
 }();
 
