@@ -10,10 +10,16 @@
 // with N rows per operand, returning N answers. An answer is an answer code (SEPARATED ...
 // UNDECIDED of the module; a negative code is an error of the method), a bool (True: the sets
 // meet, False: separated) or a word (`separated`, ..., `intersecting`, `undecided`, `invalid`,
-// `error`). An exception raised by the function ends the run as a crashed plugin ends it: the
-// cases answered before it are written, and the exception is raised again naming the case.
+// `error`). Then, as for a plugin or a program, the failure maps of the query (judge_failure_maps:
+// every cell in one call when vectorised) and the hunt for its worst input (judge_hunt, one input
+// per call), sized by map_cells and hunt_evaluations as `certcyl judge` sizes them. An exception
+// raised by the function ends the run as a crashed plugin ends it: what was answered before it
+// is written (the maps and the hunt with their failure), and the exception is raised again
+// naming the case.
+#include <algorithm>
 #include <exception>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -98,26 +104,18 @@ cli::judging::Answered read_answer(py::handle value, const cli::Case& c) {
   }
 }
 
-py::tuple judge(py::function function, const std::string& query, const std::string& size, std::uint64_t seed,
-                const std::vector<std::string>& families, bool vectorized, const std::string& method, const std::string& out_root,
-                const std::string& name, unsigned threads) {
-  cli::CaseSpec spec;
-  spec.query = query;
-  spec.size = size;
-  spec.seed = seed;
-  spec.families = families;
-  spec.threads = threads;
-  std::vector<cli::Case> cases;
-  {
-    const py::gil_scoped_release release;
-    cases = cli::make_cases(spec);
-  }
-  if (cases.empty()) throw py::value_error("judge: no cases for query " + query);
-
-  const std::filesystem::path dir = std::filesystem::path(out_root) / name;
+// The function's answers to `cases` (one call with every case when vectorized, else one per
+// case). Its first exception ends the answers (Answers::failure names the case) and is kept in
+// `error` with a note; after it, no call is made (every later exchange fails at once).
+cli::judging::Answers answer_cases(const py::function& function, const std::vector<cli::Case>& cases, bool vectorized,
+                                   const std::filesystem::path& dir, std::exception_ptr& error) {
   cli::judging::Answers answers;
   answers.answers.resize(cases.size());
-  std::exception_ptr error;
+  if (error) {
+    answers.failure = "not called after the function's exception";
+    return answers;
+  }
+  if (cases.empty()) return answers;
   // The function's exception gets a note naming the case; the run's failure says the same.
   const auto failed = [&](const std::string& what) {
     answers.failure = what;
@@ -150,10 +148,56 @@ py::tuple judge(py::function function, const std::string& query, const std::stri
       }
     }
   }
+  return answers;
+}
+
+// map_cells, hunt_evaluations: -1 for the size's (as `certcyl judge`), 0 for none.
+py::tuple judge(py::function function, const std::string& query, const std::string& size, std::uint64_t seed,
+                const std::vector<std::string>& families, bool vectorized, const std::string& method, const std::string& out_root,
+                const std::string& name, unsigned threads, int map_cells, long map_step, long hunt_evaluations) {
+  cli::CaseSpec spec;
+  spec.query = query;
+  spec.size = size;
+  spec.seed = seed;
+  spec.families = families;
+  spec.threads = threads;
+  std::vector<cli::Case> cases;
+  {
+    const py::gil_scoped_release release;
+    cases = cli::make_cases(spec);
+  }
+  if (cases.empty()) throw py::value_error("judge: no cases for query " + query);
+
+  const std::filesystem::path dir = std::filesystem::path(out_root) / name;
+  std::exception_ptr error;
+  const cli::judging::Answers answers = answer_cases(function, cases, vectorized, dir, error);
+
+  // The failure maps and the hunt, by the same calls, as `certcyl judge` draws them for a plugin
+  // or a program (not after an exception on the cases).
+  std::optional<cli::judging::MapsResult> maps;
+  std::optional<cli::judging::HuntResult> hunt;
+  const int cells = map_cells < 0 ? cli::judging::map_cells_of_size(size) : map_cells;
+  if (cells > 0) {
+    maps.emplace();
+    if (!answers.failure.empty()) {
+      maps->note = "not drawn, the method having failed on the cases";
+    } else {
+      const std::vector<study::Query> queries{cases.front().query};
+      const cli::judging::AnswerSource source = [&](const std::vector<cli::Case>& cells_asked) {
+        const py::gil_scoped_acquire acquire;
+        return answer_cases(function, cells_asked, vectorized, dir, error);
+      };
+      const py::gil_scoped_release release;
+      std::filesystem::create_directories(dir);
+      *maps = cli::judging::judge_failure_maps(dir, method, queries, source, cells, map_step, seed, std::max(1u, threads));
+      const long evaluations = hunt_evaluations < 0 ? cli::judging::hunt_evaluations_of_size(size) : hunt_evaluations;
+      if (evaluations > 0) hunt = cli::judging::judge_hunt(dir, method, queries, source, evaluations, seed);
+    }
+  }
   std::ostringstream summary;
   {
     const py::gil_scoped_release release;
-    cli::judging::write_results(dir, dir, method, cases, answers, summary);
+    cli::judging::write_results(dir, dir, method, cases, answers, summary, maps ? &*maps : nullptr, hunt ? &*hunt : nullptr);
   }
   if (error) std::rethrow_exception(error);
   return py::make_tuple(summary.str(), dir.string());
@@ -163,7 +207,8 @@ py::tuple judge(py::function function, const std::string& query, const std::stri
 
 void bind_judge(py::module_& m) {
   m.def("_judge", &judge, py::arg("function"), py::arg("query"), py::arg("size"), py::arg("seed"), py::arg("families"),
-        py::arg("vectorized"), py::arg("method"), py::arg("out"), py::arg("name"), py::arg("threads"),
+        py::arg("vectorized"), py::arg("method"), py::arg("out"), py::arg("name"), py::arg("threads"), py::arg("map_cells"),
+        py::arg("map_step"), py::arg("hunt_evaluations"),
         "The in-process judge behind certcyl.judge: returns (summary table, results folder).");
 }
 

@@ -219,7 +219,7 @@ class JudgeResult:
 
 
 def judge(function, query="ray_cylinder", size="small", *, vectorized=False, seed=1, families=(), method=None,
-          out="results", name="judge", threads=1):
+          out="results", name="judge", threads=1, map_cells=None, map_step=1, hunt_evaluations=None):
     """Judges a Python implementation of a query as ``certcyl judge`` judges a program.
 
     The cases are those of ``certcyl cases --query QUERY --size SIZE --seed SEED [--family F ...]``
@@ -232,9 +232,16 @@ def judge(function, query="ray_cylinder", size="small", *, vectorized=False, see
     negative code is an error of the method), a bool (True: the sets meet) or a word
     ("separated", ..., "intersecting", "undecided", "invalid", "error").
 
-    Writes OUT/NAME/ (families.csv, counterexamples.jsonl, answers.jsonl, summary.txt and the
-    one-page report index.html) and returns a JudgeResult. An exception raised by the function ends the run: the cases answered
-    before it are written, and the exception propagates (with a note naming the case).
+    Then, as ``certcyl judge`` does for a plugin or a program, the query's failure maps
+    (map_cells x map_cells cells, map_step ulps apart; map_cells None: the size's, 16 tiny, 32
+    small, 64 default, 128 large; 0: none) and the hunt for its worst input (hunt_evaluations
+    inputs, a quarter for cylinder pairs; None: the size's, 20 tiny, 150 small, 1000 default,
+    5000 large; 0: none), with the same calls (every cell in one call when vectorized).
+
+    Writes OUT/NAME/ (families.csv, counterexamples.jsonl, answers.jsonl, summary.txt, the maps
+    in failure_maps/ and failure_maps.csv, hunt.csv, and the one-page report index.html) and
+    returns a JudgeResult. An exception raised by the function ends the run: what was answered
+    before it is written, and the exception propagates (with a note naming the case).
     """
     if query not in JUDGE_QUERIES:
         raise ValueError(f"judge: query: expected one of {', '.join(JUDGE_QUERIES)}, got {query!r}")
@@ -242,7 +249,17 @@ def judge(function, query="ray_cylinder", size="small", *, vectorized=False, see
         raise ValueError(f"judge: function: not callable: {function!r}")
     if int(threads) < 0:
         raise ValueError(f"judge: threads: expected 0 (every core) or a positive number of threads, got {threads}")
+    def count(value, key, lo, hi):
+        if value is None:
+            return -1
+        if isinstance(value, bool) or int(value) != value or not (value == 0 or lo <= int(value) <= hi):
+            raise ValueError(f"judge: {key}: expected 0 (none) or an integer from {lo} to {hi}, got {value!r}")
+        return int(value)
+    cells = count(map_cells, "map_cells", 2, 1024)
+    evaluations = count(hunt_evaluations, "hunt_evaluations", 1, 100_000_000)
+    if isinstance(map_step, bool) or int(map_step) != map_step or not 1 <= int(map_step) <= 1_000_000_000:
+        raise ValueError(f"judge: map_step: expected an integer from 1 to 10^9, got {map_step!r}")
     label = method or getattr(function, "__qualname__", None) or "python"
     summary, folder = _certcyl._judge(function, query, str(size), int(seed), list(families), bool(vectorized), label,
-                                      str(out), str(name), int(threads))
+                                      str(out), str(name), int(threads), cells, int(map_step), evaluations)
     return JudgeResult(summary, folder)

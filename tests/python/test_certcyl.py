@@ -372,11 +372,16 @@ class Judge(unittest.TestCase):
         self.assertEqual(total["failures"], 0)
 
     def test_a_method_that_never_meets_fails_on_every_meeting_case(self):
+        shapes = []
         def never(origins, directions, cylinders):
-            self.assertEqual(origins.shape, (len(self.cases), 3))
-            self.assertEqual(cylinders.shape, (len(self.cases), 7))
+            shapes.append((origins.shape, cylinders.shape))
             return np.zeros(len(origins), dtype=bool)
         result = self.judge(never, vectorized=True, name="never", method="never")
+        # One call with every case, then one with every cell of the two maps (16 x 16 each at
+        # tiny size), then one per input of the hunt.
+        self.assertEqual(shapes[0], ((len(self.cases), 3), (len(self.cases), 7)))
+        self.assertEqual(shapes[1], ((2 * 16 * 16, 3), (2 * 16 * 16, 7)))
+        self.assertEqual(set(shapes[2:]), {((1, 3), (1, 7))})
         total = result.family("line_cylinder")
         self.assertEqual(total["false_negative"], self.meeting)
         self.assertEqual(total["failures"], self.meeting)
@@ -417,6 +422,70 @@ class Judge(unittest.TestCase):
                  "--name", "command"], "")
         with open(os.path.join(self.tmp.name, "command", "families.csv")) as a, open(os.path.join(result.folder, "families.csv")) as b:
             self.assertEqual(a.read(), b.read())
+
+    def test_maps_and_hunt_as_the_command_draws_them(self):
+        # The example program of `certcyl judge --exec` (examples/exec_python/line_double.py),
+        # judged by the command and, through its clip function, in process: the same families,
+        # counterexamples, failure maps (every cell) and hunt, byte for byte.
+        example = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples", "exec_python")
+        sys.path.insert(0, example)
+        try:
+            from line_double import clip
+        finally:
+            sys.path.remove(example)
+
+        def line_double(origin, direction, cylinder):
+            c = [float(x) for x in cylinder]
+            return clip([float(x) for x in origin], [float(x) for x in direction], {"p0": c[:3], "p1": c[3:6], "radius": c[6]},
+                        -math.inf, math.inf)
+
+        def vectorized(origins, directions, cylinders):
+            return [line_double(o, d, c) for o, d, c in zip(origins, directions, cylinders)]
+
+        with np.errstate(all="ignore"):
+            result = self.judge(line_double, name="inproc", method="line_double")
+            batched = self.judge(vectorized, name="batched", method="line_double", vectorized=True)
+        command(["judge", "--exec", f"{sys.executable} {os.path.join(example, 'line_double.py')}", "--query", "line_cylinder",
+                 "--size", "tiny", "--label", "line_double", "--out", self.tmp.name, "--name", "command"], "")
+
+        def read(name, file):
+            with open(os.path.join(self.tmp.name, name, file)) as f:
+                return f.read()
+        maps = sorted(os.listdir(os.path.join(self.tmp.name, "command", "failure_maps")))
+        self.assertGreater(len(maps), 0)
+        files = ["families.csv", "counterexamples.jsonl", "answers.jsonl", "failure_maps.csv", "hunt.csv"]
+        for name in ("inproc", "batched"):
+            for file in files + [os.path.join("failure_maps", m) for m in maps]:
+                self.assertEqual(read(name, file), read("command", file), f"{name}: {file}")
+        # The maps find the test's failures (its discriminant's rounding near tangency).
+        wrong = [int(row.split(",")[-1]) for row in read("inproc", "failure_maps.csv").splitlines()[1:]]
+        self.assertGreater(sum(wrong), 0)
+        self.assertIn("failure map", result.summary)
+        self.assertIn("hunt: line_cylinder", result.summary)
+
+        # Without maps and hunt; bad sizes.
+        plain = self.judge(line_double, name="plain", map_cells=0, hunt_evaluations=0)
+        self.assertFalse(os.path.exists(os.path.join(plain.folder, "failure_maps")))
+        self.assertFalse(os.path.exists(os.path.join(plain.folder, "hunt.csv")))
+        for bad in ({"map_cells": 1}, {"map_cells": 2.5}, {"hunt_evaluations": -3}, {"map_step": 0}):
+            with self.assertRaisesRegex(ValueError, f"judge: {next(iter(bad))}: expected"):
+                self.judge(line_double, name="bad", **bad)
+
+    def test_an_exception_in_the_maps_keeps_what_was_judged(self):
+        calls = []
+        def fails_in_the_maps(origin, direction, cylinder):
+            calls.append(1)
+            if len(calls) == len(self.cases) + 5:
+                raise RuntimeError("broken in a map")
+            return certcyl.SEPARATED
+        with self.assertRaisesRegex(RuntimeError, "broken in a map"):
+            self.judge(fails_in_the_maps, name="maps")
+        folder = os.path.join(self.tmp.name, "maps")
+        with open(os.path.join(folder, "answers.jsonl")) as f:
+            self.assertEqual(len(f.readlines()), len(self.cases))
+        with open(os.path.join(folder, "summary.txt")) as f:
+            self.assertIn("broken in a map", f.read())
+        self.assertEqual(len(calls), len(self.cases) + 5)  # no call after the exception
 
     def test_an_exception_keeps_what_was_judged(self):
         calls = []
