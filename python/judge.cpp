@@ -15,8 +15,9 @@
 // per call), sized by map_cells and hunt_evaluations as `certcyl judge` sizes them. An exception
 // raised by the function ends the run as a crashed plugin ends it: what was answered before it
 // is written (the maps and the hunt with their failure), and the exception is raised again
-// naming the case.
+// naming the case. The cases' calls are timed as a whole (speed.csv, the report's speed).
 #include <algorithm>
+#include <chrono>
 #include <exception>
 #include <filesystem>
 #include <optional>
@@ -170,7 +171,14 @@ py::tuple judge(py::function function, const std::string& query, const std::stri
 
   const std::filesystem::path dir = std::filesystem::path(out_root) / name;
   std::exception_ptr error;
-  const cli::judging::Answers answers = answer_cases(function, cases, vectorized, dir, error);
+  const auto start = std::chrono::steady_clock::now();
+  cli::judging::Answers answers = answer_cases(function, cases, vectorized, dir, error);
+  if (answers.failure.empty()) {
+    answers.ns_per_query = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count() /
+                           static_cast<double>(cases.size());
+    answers.timing = vectorized ? "per query in process, the one call with every case (the operands' arrays included)"
+                                : "per query in process, one call per case (the operands' arrays and the call included)";
+  }
 
   // The failure maps and the hunt, by the same calls, as `certcyl judge` draws them for a plugin
   // or a program (not after an exception on the cases).

@@ -453,6 +453,11 @@ class Judge(unittest.TestCase):
                 return f.read()
         maps = sorted(os.listdir(os.path.join(self.tmp.name, "command", "failure_maps")))
         self.assertGreater(len(maps), 0)
+        # The in-process calls are timed (speed.csv, as the command writes it for a program).
+        with open(os.path.join(result.folder, "speed.csv")) as f:
+            rows = f.read().splitlines()
+        self.assertEqual(len(rows), 2)
+        self.assertGreater(float(rows[1].split(",")[-1]), 0)
         files = ["families.csv", "counterexamples.jsonl", "answers.jsonl", "failure_maps.csv", "hunt.csv"]
         for name in ("inproc", "batched"):
             for file in files + [os.path.join("failure_maps", m) for m in maps]:
