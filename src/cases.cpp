@@ -12,6 +12,7 @@
 
 #include "study/families.hpp"
 #include "study/gap.hpp"
+#include "judge_internal.hpp"
 #include "query.hpp"
 #include "study_internal.hpp"
 
@@ -101,6 +102,24 @@ Case parse_case(const std::string& text) {
   } else {
     throw std::runtime_error("meta.gap: expected [lo, hi] or null");
   }
+  if (meta.contains("map")) {
+    const nlohmann::json& m = meta["map"];
+    const auto integer = [&m](const char* key, long long lo, long long hi) {
+      if (!m.is_object() || !m.contains(key) || !m[key].is_number_integer() || m[key].get<long long>() < lo || m[key].get<long long>() > hi)
+        throw std::runtime_error(std::string("meta.map.") + key + ": expected an integer from " + std::to_string(lo) + " to " +
+                                 std::to_string(hi));
+      return m[key].get<long long>();
+    };
+    MapCell cell;
+    cell.cells = static_cast<int>(integer("cells", 2, 1024));
+    cell.step = static_cast<long>(integer("step", 1, 1000000000));
+    if (!m.contains("seed") || !m["seed"].is_number_unsigned()) throw std::runtime_error("meta.map.seed: expected an unsigned integer");
+    cell.seed = m["seed"].get<std::uint64_t>();
+    if (c.family.rfind("failure_map/", 0) != 0) throw std::runtime_error("meta.map: only on a failure map's cell (family failure_map/...)");
+    c.map = cell;
+  } else if (c.family.rfind("failure_map/", 0) == 0) {
+    throw std::runtime_error("meta.map: missing on a failure map's cell");
+  }
   const std::size_t n = study::coordinate_count(c.query);
   std::vector<double> index(n);
   for (std::size_t i = 0; i < n; ++i) index[i] = static_cast<double>(i);
@@ -167,6 +186,7 @@ ojson query_line(const Case& c) {
 ojson case_line(const Case& c) {
   ojson line = query_line(c);
   line["meta"] = ojson{{"family", c.family}, {"k", c.k}, {"certified", std::string(to_string(c.certified))}, {"gap", gap_json(c)}};
+  if (c.map) line["meta"]["map"] = ojson{{"cells", c.map->cells}, {"step", c.map->step}, {"seed", c.map->seed}};
   return line;
 }
 
@@ -191,6 +211,10 @@ std::vector<Case> read_cases(std::istream& in, const std::string& label) {
 
 int run_cases(const CaseSpec& spec, std::ostream& out) {
   for (const Case& c : make_cases(spec)) out << case_line(c).dump() << '\n';
+  if (spec.map_cells > 0)
+    for (const Case& c : judging::map_cell_cases({parse_study_query(spec.query)}, spec.map_cells, spec.map_step, spec.seed,
+                                                 spec.threads))
+      out << case_line(c).dump() << '\n';
   out.flush();
   return out ? 0 : 1;
 }

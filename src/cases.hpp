@@ -8,12 +8,17 @@
 // with every coordinate a JSON number (its binary64 value, written to round trip), so
 // `certcyl query` answers it as it stands and passes "meta" through. The gap is null when it is
 // unbounded (cylinder pairs with equal midpoints).
+// With map_cells, the cells of the query's failure maps follow (the maps `certcyl judge` draws
+// for a plugin or a program): id "failure_map/<map>/<row>/<column>", family "failure_map/<map>",
+// k 0 and "meta.map": {"cells", "step", "seed"}; answered in an answers file, they give the
+// judge its maps (judge.cpp).
 #pragma once
 
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +33,16 @@ struct CaseSpec {
   std::string size = "small";         // tiny | small | default | large | N (cases per family)
   std::uint64_t seed = 1;
   unsigned threads = 2;               // for certifying
+  int map_cells = 0;                  // run_cases: also the failure maps' cells (N x N), 0: none
+  long map_step = 1;                  // ulps between neighbouring cells
+};
+
+// The failure maps a map cell belongs to (`certcyl cases --map-cells`): the maps of
+// map_grids(seed, cells, step) (study_maps.cpp).
+struct MapCell {
+  int cells = 0;
+  long step = 1;
+  std::uint64_t seed = 1;
 };
 
 struct Case {
@@ -39,6 +54,7 @@ struct Case {
   double gap_lo = 0, gap_hi = 0;
   std::vector<double> x;       // study/instance.hpp layout
   std::size_t line = 0;        // its line in the cases file, or in `certcyl cases` of the same options (from 1)
+  std::optional<MapCell> map;  // a failure map's cell (family failure_map/<map>), not a family's case
 };
 
 // The study query named `name`; throws std::invalid_argument listing the names.
@@ -50,7 +66,7 @@ std::vector<Case> make_cases(const CaseSpec& spec);
 
 // The case's `certcyl query` line without "meta": id, query and operands.
 nlohmann::ordered_json query_line(const Case& c);
-// The same with "meta" (family, k, certified, gap).
+// The same with "meta" (family, k, certified, gap; a map cell's "map": {cells, step, seed}).
 nlohmann::ordered_json case_line(const Case& c);
 
 // Reads a cases file (lines written by case_line; blank lines skipped). Throws

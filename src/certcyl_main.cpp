@@ -183,6 +183,12 @@ int main(int argc, char** argv) {
   cases->add_option("--seed", case_spec.seed, "Random seed (default 1, the study's)")->check(uint64_option());
   cases->add_option("--threads", case_spec.threads, "Threads certifying the cases (default 2; 0 = all cores)")
       ->check(CLI::Range(0u, 1024u));
+  cases->add_option("--map-cells", case_spec.map_cells,
+                    "Also the cells of the query's failure maps, N x N each, N from 2 to 1024 (an answers file\n"
+                    "answering them gives `certcyl judge --answers` the maps; default none)")
+      ->check(CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 2, 1024); }, "2..1024"));
+  cases->add_option("--map-step", case_spec.map_step, "Ulps between neighbouring cells of a map, 1 to 10^9 (default 1)")
+      ->check(CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 1, 1000000000); }, "1..10^9"));
 
   certcyl::cli::JudgeOptions judge_options;
   CLI::App* judge = app.add_subcommand("judge", "Score a method's answers to the study's cases against the certified answers");

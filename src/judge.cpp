@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <optional>
 #include <stdexcept>
 
@@ -29,6 +31,46 @@ void check_method_name(const std::string& name, const std::string& where) {
                                   hex[c >> 4] + hex[c & 15] + hint);
     }
   }
+}
+
+// The failure maps of an answers file (header comment of cases.hpp): the maps of the cells'
+// (cells, step, seed), each cell's answer looked up by its id; a cell the cases file does not
+// hold, or holds with another input than the map's, is an error of the exchange for that map.
+judging::MapsResult answered_maps(const std::filesystem::path& dir, const std::string& method, const std::vector<Case>& given,
+                                  const std::map<std::string, std::optional<judging::Answered>>& answer_of, int map_cells,
+                                  unsigned threads) {
+  const MapCell m = *given.front().map;
+  std::vector<study::Query> queries;
+  std::map<std::string, const Case*> by_id;
+  for (const Case& c : given) {
+    if (c.map->cells != m.cells || c.map->step != m.step || c.map->seed != m.seed)
+      throw std::runtime_error("--cases: line " + std::to_string(c.line) + ": map cell " + c.id + " of other maps (meta.map) than line " +
+                               std::to_string(given.front().line) + "'s");
+    if (std::find(queries.begin(), queries.end(), c.query) == queries.end()) queries.push_back(c.query);
+    by_id[c.id] = &c;
+  }
+  if (map_cells > 0 && map_cells != m.cells)
+    throw std::invalid_argument("--map-cells " + std::to_string(map_cells) + ": the cases file's maps have " + std::to_string(m.cells) +
+                                " x " + std::to_string(m.cells) + " cells");
+  const judging::AnswerSource source = [&](const std::vector<Case>& cells) {
+    judging::Answers a;
+    a.answers.resize(cells.size());
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      const auto it = by_id.find(cells[i].id);
+      if (it == by_id.end()) {
+        a.failure = "the cases file has no cell " + cells[i].id;
+        break;
+      }
+      if (it->second->x != cells[i].x) {
+        a.failure = "the cases file's cell " + cells[i].id + " (line " + std::to_string(it->second->line) +
+                    ") has another input than the map's";
+        break;
+      }
+      a.answers[i] = answer_of.at(cells[i].id);
+    }
+    return a;
+  };
+  return judging::judge_failure_maps(dir, method, queries, source, m.cells, m.step, m.seed, threads);
 }
 
 }  // namespace
@@ -68,6 +110,16 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
     } else {
       throw std::invalid_argument("give --cases FILE or --query Q");
     }
+    // A cases file may hold failure-map cells (`certcyl cases --map-cells`): answered in an
+    // answers file they give the maps; they are never scored as a family's cases, and with
+    // --exec or --plugin the exchange draws the maps itself.
+    std::vector<Case> given_cells;
+    {
+      const auto cells = std::stable_partition(cases.begin(), cases.end(), [](const Case& c) { return !c.map; });
+      given_cells.assign(std::make_move_iterator(cells), std::make_move_iterator(cases.end()));
+      cases.erase(cells, cases.end());
+      if (cases.empty() && !given_cells.empty()) throw std::runtime_error("--cases: only failure-map cells, no case to judge");
+    }
     if (plugin) {
       std::erase_if(cases, [&](const Case& c) {
         return std::find(plugin->queries.begin(), plugin->queries.end(), c.query) == plugin->queries.end();
@@ -96,10 +148,20 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
     const Timeout timeout{o.timeout_seconds};
     Answers answers;
     std::string method;
+    // An answers file answers the cases file's map cells too; their answers, by id.
+    std::map<std::string, std::optional<Answered>> cell_answers;
     if (!o.answers_file.empty()) {
       std::ifstream in(o.answers_file);
       if (!in) throw std::runtime_error("--answers: cannot read '" + o.answers_file + "'");
-      answers = read_answers(in, o.answers_file, cases);
+      if (!given_cells.empty()) {
+        std::vector<Case> asked = cases;
+        asked.insert(asked.end(), given_cells.begin(), given_cells.end());
+        answers = read_answers(in, o.answers_file, asked);
+        for (std::size_t i = 0; i < given_cells.size(); ++i) cell_answers[given_cells[i].id] = answers.answers[cases.size() + i];
+        answers.answers.resize(cases.size());
+      } else {
+        answers = read_answers(in, o.answers_file, cases);
+      }
       method = fs::path(o.answers_file).stem().string();
     } else if (!o.exec_command.empty()) {
       answers = run_exec(o.exec_command, cases, timeout);
@@ -118,8 +180,10 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
       maps.emplace();
       if (sharded) {
         maps->note = "a shard does not draw them (judge unsharded to draw them)";
+      } else if (!o.answers_file.empty() && cell_answers.empty()) {
+        maps->note = "an answers file gives them when the cases file holds the maps' cells (certcyl cases --map-cells N)";
       } else if (!o.answers_file.empty()) {
-        maps->note = "they need --plugin or --exec (an answers file holds no answers for the maps' inputs)";
+        *maps = answered_maps(folder, method, given_cells, cell_answers, o.map_cells, std::max(1u, o.spec.threads));
       } else if (!answers.failure.empty()) {
         maps->note = "not drawn, the method having failed on the cases";
       } else {

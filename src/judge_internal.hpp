@@ -31,6 +31,10 @@
 #include "cases.hpp"
 #include "study/methods.hpp"
 
+namespace certcyl::cli::detail {
+struct MapGrid;
+}
+
 namespace certcyl::cli::judging {
 
 // The judged method's answer to one case: as it said it, and as the study reads it.
@@ -150,6 +154,13 @@ struct MapsResult {
 // The failure maps' size for a --size: tiny 16 x 16 cells, small (and a number) 32, default 64,
 // large 128.
 int map_cells_of_size(const std::string& size);
+
+// The cells of the failure maps of the given queries (map_grids(seed, cells, step)), each a
+// certified case: id failure_map/<map>/<row>/<column>, family failure_map/<map>, k 0, `map` set,
+// in the maps' order, row-major; with `grids` and `lines`, the maps and each cell's first CSV
+// columns (MapGrid::certified_line). Empty when no map is drawn for the queries.
+std::vector<Case> map_cell_cases(const std::vector<study::Query>& queries, int cells, long step, std::uint64_t seed, unsigned threads,
+                                 std::vector<detail::MapGrid>* grids = nullptr, std::vector<std::string>* lines = nullptr);
 
 // The study's failure maps (study_maps.cpp: map_grids) of the given queries, each cell certified
 // and answered by `source`, written to dir/failure_maps/<name>.csv and .json as the study writes

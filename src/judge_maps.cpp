@@ -33,19 +33,12 @@ int map_cells_of_size(const std::string& size) {
   return 32;  // small, or a number of cases per family
 }
 
-MapsResult judge_failure_maps(const fs::path& dir, const std::string& method, const std::vector<study::Query>& queries,
-                              const AnswerSource& source, int cells, long step, std::uint64_t seed, unsigned threads) {
-  MapsResult result;
+std::vector<Case> map_cell_cases(const std::vector<study::Query>& queries, int cells, long step, std::uint64_t seed, unsigned threads,
+                                 std::vector<detail::MapGrid>* grids_out, std::vector<std::string>* lines_out) {
   std::vector<detail::MapGrid> grids;
   for (detail::MapGrid& g : detail::map_grids(seed, cells, step))
     if (std::find(queries.begin(), queries.end(), g.query) != queries.end()) grids.push_back(std::move(g));
-  if (grids.empty()) {
-    result.note = "no failure map is drawn for the judged queries";
-    return result;
-  }
   const std::size_t per_map = static_cast<std::size_t>(cells) * static_cast<std::size_t>(cells);
-
-  // Every cell of every map, certified, as a case of the exchange.
   std::vector<Case> all(grids.size() * per_map);
   std::vector<std::string> lines(all.size());
   detail::parallel_for(all.size(), threads, [&](std::size_t n) {
@@ -65,8 +58,26 @@ MapsResult judge_failure_maps(const fs::path& dir, const std::string& method, co
     c.gap_hi = inst.gap_hi;
     c.x = std::move(inst.x);
     c.line = n + 1;
+    c.map = MapCell{cells, step, seed};
     lines[n] = g.certified_line(cell, inst);
   });
+  if (grids_out) *grids_out = std::move(grids);
+  if (lines_out) *lines_out = std::move(lines);
+  return all;
+}
+
+MapsResult judge_failure_maps(const fs::path& dir, const std::string& method, const std::vector<study::Query>& queries,
+                              const AnswerSource& source, int cells, long step, std::uint64_t seed, unsigned threads) {
+  MapsResult result;
+  std::vector<detail::MapGrid> grids;
+  std::vector<std::string> lines;
+  // Every cell of every map, certified, as a case of the exchange.
+  const std::vector<Case> all = map_cell_cases(queries, cells, step, seed, threads, &grids, &lines);
+  if (grids.empty()) {
+    result.note = "no failure map is drawn for the judged queries";
+    return result;
+  }
+  const std::size_t per_map = static_cast<std::size_t>(cells) * static_cast<std::size_t>(cells);
 
   // The method's answers, resumed after a failure.
   std::vector<char> codes(all.size(), '.');

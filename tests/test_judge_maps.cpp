@@ -329,13 +329,78 @@ BOOST_AUTO_TEST_CASE(a_failure_on_the_way_keeps_the_other_cells) {
   BOOST_TEST(lines_of(slurp(s.dir / "failure_maps/tangent_line.csv")).size() == 82u);
 }
 
-BOOST_AUTO_TEST_CASE(an_answers_file_has_no_maps) {
+BOOST_AUTO_TEST_CASE(an_answers_file_gives_the_maps_when_the_cases_hold_their_cells) {
   Scratch s;
-  BOOST_TEST_REQUIRE(s.run(std::string(CERTCYL_BIN) + " cases --query line_cylinder --size tiny > cases.jsonl").status == 0);
-  BOOST_TEST_REQUIRE(s.run(std::string(CERTCYL_BIN) + " query < cases.jsonl > answers.jsonl").status == 0);
-  BOOST_TEST_REQUIRE(s.run(std::string(CERTCYL_BIN) + " judge --answers answers.jsonl --cases cases.jsonl").status == 0);
-  BOOST_TEST(!fs::exists(s.dir / "results/judge/failure_maps"));
-  BOOST_TEST(slurp(s.dir / "out.txt").find("failure maps: they need --plugin or --exec") != std::string::npos, slurp(s.dir / "out.txt"));
+  const std::string certcyl = CERTCYL_BIN, method = " query --method shene --nt double";
+  // Without the maps' cells in the cases file: no maps, and the summary says how to get them.
+  BOOST_TEST_REQUIRE(s.run(certcyl + " cases --query line_cylinder --size tiny > cases.jsonl").status == 0);
+  BOOST_TEST_REQUIRE(s.run(certcyl + method + " < cases.jsonl > answers.jsonl").status == 0);
+  BOOST_TEST_REQUIRE(s.run(certcyl + " judge --answers answers.jsonl --cases cases.jsonl --name plain").status == 0);
+  BOOST_TEST(!fs::exists(s.dir / "results/plain/failure_maps"));
+  BOOST_TEST(slurp(s.dir / "out.txt").find("failure maps: an answers file gives them when the cases file holds the maps' cells") !=
+                 std::string::npos,
+             slurp(s.dir / "out.txt"));
+  // With them (certcyl cases --map-cells 16): the same maps as the program judged through --exec
+  // at 16 x 16 cells, byte for byte, and the same families (the cells are not a family's cases).
+  BOOST_TEST_REQUIRE(s.run(certcyl + " cases --query line_cylinder --size tiny --map-cells 16 > cells.jsonl").status == 0);
+  const std::vector<std::string> lines = lines_of(slurp(s / "cells.jsonl"));
+  BOOST_TEST_REQUIRE(lines.size() == lines_of(slurp(s / "cases.jsonl")).size() + 2 * 16 * 16);
+  BOOST_TEST(lines.back().find(R"("id":"failure_map/rim_line/15/15")") != std::string::npos, lines.back());
+  BOOST_TEST(lines.back().find(R"("map":{"cells":16,"step":1,"seed":1})") != std::string::npos, lines.back());
+  BOOST_TEST_REQUIRE(s.run(certcyl + method + " < cells.jsonl > cell_answers.jsonl").status == 0);
+  const Run answered = s.run(certcyl + " judge --answers cell_answers.jsonl --cases cells.jsonl --name answered --label shene");
+  BOOST_TEST_REQUIRE(answered.status == 0, answered.err);
+  const Run exec = s.run(certcyl + " judge --exec '" + certcyl + method + "' --cases cases.jsonl --name exec --label shene --map-cells 16");
+  BOOST_TEST_REQUIRE(exec.status == 0, exec.err);
+  for (const char* file : {"families.csv", "failure_maps.csv", "failure_maps/tangent_line.csv", "failure_maps/rim_line.csv",
+                           "failure_maps/tangent_line.json", "failure_maps/rim_line.json", "counterexamples.jsonl"})
+    BOOST_TEST(slurp(s.dir / "results/answered" / file) == slurp(s.dir / "results/exec" / file), file);
+  BOOST_TEST(lines_of(slurp(s.dir / "results/answered/failure_maps.csv")).size() == 3u);
+  BOOST_TEST(lines_of(slurp(s.dir / "results/answered/answers.jsonl")).size() == lines_of(slurp(s / "cases.jsonl")).size());
+
+  // Errors, each naming what is wrong: a cell left unanswered, a cell whose input was changed,
+  // another map size asked for, a file of cells alone, a cell without its maps' parameters.
+  {
+    std::vector<std::string> a = lines_of(slurp(s / "cell_answers.jsonl"));
+    a.pop_back();
+    std::ofstream out(s / "short.jsonl");
+    for (const std::string& l : a) out << l << "\n";
+  }
+  Run r = s.run(certcyl + " judge --answers short.jsonl --cases cells.jsonl --name short");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("no answer for case 'failure_map/rim_line/15/15'") != std::string::npos, r.err);
+  {
+    std::string text = slurp(s / "cells.jsonl");
+    const std::size_t at = text.find(R"({"id":"failure_map/tangent_line/0/0")");
+    BOOST_TEST_REQUIRE(at != std::string::npos);
+    const std::size_t digit = text.find_first_of("123456789", text.find("\"origin\":[", at));
+    text[digit] = text[digit] == '9' ? '8' : static_cast<char>(text[digit] + 1);
+    std::ofstream(s / "edited.jsonl") << text;
+  }
+  r = s.run(certcyl + " judge --answers cell_answers.jsonl --cases edited.jsonl --name edited");
+  BOOST_TEST(r.status == 0, r.err);
+  BOOST_TEST(slurp(s.dir / "out.txt").find("failure_map/tangent_line/0/0 (line ") != std::string::npos, slurp(s.dir / "out.txt"));
+  BOOST_TEST(slurp(s.dir / "out.txt").find("has another input than the map's") != std::string::npos, slurp(s.dir / "out.txt"));
+  r = s.run(certcyl + " judge --answers cell_answers.jsonl --cases cells.jsonl --name other --map-cells 8");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("--map-cells 8: the cases file's maps have 16 x 16 cells") != std::string::npos, r.err);
+  {
+    std::ofstream out(s / "only.jsonl");
+    for (const std::string& l : lines)
+      if (l.find("failure_map/") != std::string::npos) out << l << "\n";
+  }
+  r = s.run(certcyl + " judge --answers cell_answers.jsonl --cases only.jsonl --name only");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("--cases: only failure-map cells, no case to judge") != std::string::npos, r.err);
+  {
+    std::string text = slurp(s / "cells.jsonl");
+    const std::size_t at = text.find(R"(,"map":{"cells":16,"step":1,"seed":1})");
+    text.erase(at, std::string(R"(,"map":{"cells":16,"step":1,"seed":1})").size());
+    std::ofstream(s / "nomap.jsonl") << text;
+  }
+  r = s.run(certcyl + " judge --answers cell_answers.jsonl --cases nomap.jsonl --name nomap");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("meta.map: missing on a failure map's cell") != std::string::npos, r.err);
 }
 
 BOOST_AUTO_TEST_CASE(map_and_hunt_sizes_from_the_command_line) {
