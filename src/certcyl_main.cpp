@@ -233,6 +233,9 @@ int main(int argc, char** argv) {
                     "Inputs the worst-input hunt evaluates per query, 1 to 10^8, a quarter of them for cylinder\n"
                     "pairs (--plugin and --exec; default the size's: 20 tiny, 150 small, 1000 default, 5000 large)")
       ->check(CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 1, 100000000); }, "1..10^8"));
+  judge->add_option("--study", judge_options.study_dir,
+                    "A study's results folder: when every case was judged, its speed-against-error figures drawn again\n"
+                    "with the judged method's point, into <results>/figures (--exec and --plugin; not with --shard)");
   std::string judge_shard;
   judge->add_option("--shard", judge_shard,
                     "Judge shard i of n (i/n, 0-based: the cases whose index is i modulo n) into\n"

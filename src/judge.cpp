@@ -4,15 +4,18 @@
 #include "judge.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
 #include "judge_internal.hpp"
 #include "study.hpp"
+#include "study_internal.hpp"
 
 namespace certcyl::cli {
 
@@ -73,6 +76,33 @@ judging::MapsResult answered_maps(const std::filesystem::path& dir, const std::s
   return judging::judge_failure_maps(dir, method, queries, source, m.cells, m.step, m.seed, threads);
 }
 
+// s as one word of /bin/sh.
+std::string shell_word(const std::string& s) {
+  std::string q = "'";
+  for (const char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// The study's figures with the judged method's point (JudgeOptions::study_dir), into
+// folder/figures; what happened on `out`. Returns false when they could not be drawn.
+bool draw_on_study(const std::filesystem::path& study, const std::filesystem::path& folder, std::ostream& out) {
+  const std::string script = detail::plot_study_script();
+  const std::filesystem::path figures = folder / "figures";
+  const std::string cmd = "/usr/bin/python3 " + shell_word(script) + " " + shell_word(study.string()) + " --judged " +
+                          shell_word(folder.string()) + " --out " + shell_word(figures.string());
+  if (!std::filesystem::exists(script) || std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") != 0) {
+    out << "figures: /usr/bin/python3 with matplotlib (Debian python3-matplotlib) not found; when it is installed run\n  " << cmd << '\n';
+    return false;
+  }
+  if (std::system((cmd + " >/dev/null").c_str()) != 0) {
+    out << "figures: the plotting script failed; run it by hand to see why:\n  " << cmd << '\n';
+    return false;
+  }
+  out << "figures: " << figures.string() << " (the study's figures with the judged method's point; page "
+      << (figures / "index.html").string() << ")\n";
+  return true;
+}
+
 }  // namespace
 
 int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
@@ -81,6 +111,12 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
     const int sources = !o.answers_file.empty() + !o.exec_command.empty() + !o.plugin_file.empty();
     if (sources != 1) throw std::invalid_argument("give one of --answers, --exec and --plugin");
     check_folder_name(o.name, "--name");  // the results stay inside --out
+    if (!o.study_dir.empty()) {
+      if (o.shard_count > 1) throw std::invalid_argument("--study: not with --shard (draw the figures when judging the merged answers)");
+      if (!o.answers_file.empty()) throw std::invalid_argument("--study: needs --exec or --plugin (an answers file has no time per query)");
+      if (!std::filesystem::is_regular_file(std::filesystem::path(o.study_dir) / "summary.csv"))
+        throw std::invalid_argument("--study: '" + o.study_dir + "' is not a study's results folder (no summary.csv)");
+    }
     std::optional<PluginInfo> plugin;
     if (!o.plugin_file.empty()) plugin = inspect_plugin(o.plugin_file);
     if (!o.label.empty())
@@ -209,6 +245,12 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
       err << "certcyl judge: " << answers.failure << '\n';
       if (sharded) err << "certcyl judge: the shard is not finished; what was judged is in " << partial.string() << '\n';
       return 1;
+    }
+    if (!o.study_dir.empty()) {
+      std::ostringstream said;
+      const bool drawn = draw_on_study(o.study_dir, folder, said);
+      (drawn ? out : err) << (drawn ? "" : "certcyl judge: ") << said.str();
+      if (!drawn) return 1;
     }
     if (!out) {
       err << "certcyl judge: error writing standard output\n";

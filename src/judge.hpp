@@ -48,6 +48,11 @@ struct JudgeOptions {
   // quarter for cylinder pairs); -1: the size's (20 tiny, 150 small, 1000 default, 5000 large),
   // 0: none (the command line gives 1 to 10^8).
   long hunt_evaluations = -1;
+  // --study DIR: a study's results folder; when every case was judged, the study's
+  // speed-against-error figures are drawn again with the judged method's point
+  // (experiments/plot_study.py DIR --judged <results> --out <results>/figures), the study's
+  // folder left unchanged. Not with --shard.
+  std::string study_dir;
 };
 
 // Runs the command; returns 0 when every case was judged, 1 otherwise (the error on `err`; what

@@ -162,6 +162,8 @@ std::string write_stages(const fs::path& dir);
 // Runs experiments/plot_study.py on dir when wanted and possible (figures/ and index.html, one
 // line per figure on standard error), else says how (study_report.cpp).
 void run_plots(const fs::path& dir, bool want, std::ostream& out);
+// The path of experiments/plot_study.py in the source tree this program was built from.
+std::string plot_study_script();
 
 // ---- The sealed results folder (study_manifest.cpp) --------------------------------------------
 

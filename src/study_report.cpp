@@ -156,8 +156,10 @@ std::string write_summary(const fs::path& dir) {
   return table;
 }
 
+std::string plot_study_script() { return std::string(CERTCYL_SOURCE_DIR) + "/experiments/plot_study.py"; }
+
 void run_plots(const fs::path& dir, bool want, std::ostream& out) {
-  const std::string script = std::string(CERTCYL_SOURCE_DIR) + "/experiments/plot_study.py";
+  const std::string script = plot_study_script();
   const std::string cmd = "/usr/bin/python3 '" + script + "' '" + dir.string() + "'";
   if (!want) {
     out << "figures: run  " << cmd << '\n';
