@@ -65,10 +65,10 @@ double parse_num(const std::string& s);
 void write_row(std::ostream& os, const Row& r);
 // Throws std::runtime_error on a line that is not a row of instances.csv.
 Row parse_row(const std::string& line);
-std::vector<std::string> split(const std::string& line, char sep);
 // One CSV field as RFC 4180 writes it: as is, or in double quotes (each quote doubled) when it
 // holds a comma, a quote, a line break or leading or trailing space (a judged method's name is
-// free text: a command, a label, a file's name); split_csv is its inverse on a line of fields.
+// free text: a command, a label, a file's name); split_csv is its inverse on a line of fields,
+// the one reader of the study's CSV rows.
 std::string csv_field(const std::string& s);
 std::vector<std::string> split_csv(const std::string& line);
 // The coordinates as hexfloats separated by spaces.

@@ -127,7 +127,7 @@ int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
       std::getline(in, line);
       for (long n = 2; std::getline(in, line); ++n) {
         try {
-          into.emplace_back(std::stoull(split(line, ',').at(id_field)), line);
+          into.emplace_back(std::stoull(split_csv(line).at(id_field)), line);
         } catch (const std::exception&) {
           throw std::runtime_error("merge: " + s.filename().string() + "/" + file + ", line " + std::to_string(n) + ": not a row");
         }

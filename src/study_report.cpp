@@ -86,7 +86,7 @@ Checks checks_from_inputs(const fs::path& inputs_csv) {
   std::string line;
   std::getline(in, line);
   while (std::getline(in, line)) {
-    const auto f = split(line, ',');
+    const auto f = split_csv(line);
     if (f.size() < 10) continue;
     ++c.instances;
     const std::string& expected = f[4];

@@ -36,21 +36,6 @@ void write_row(std::ostream& os, const Row& r) {
      << num(r.gap_hi) << ',' << num(r.ns) << ',' << num(r.t_error) << '\n';
 }
 
-std::vector<std::string> split(const std::string& line, char sep) {
-  std::vector<std::string> out;
-  std::string cur;
-  for (char c : line) {
-    if (c == sep) {
-      out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
-  }
-  out.push_back(cur);
-  return out;
-}
-
 std::string csv_field(const std::string& s) {
   const bool plain = s.find_first_of(",\"\r\n") == std::string::npos && (s.empty() || (s.front() != ' ' && s.back() != ' '));
   if (plain) return s;
@@ -88,7 +73,7 @@ std::vector<std::string> split_csv(const std::string& line) {
 }
 
 Row parse_row(const std::string& line) {
-  const auto f = split(line, ',');
+  const auto f = split_csv(line);
   if (f.size() != 16) throw std::runtime_error("instances.csv: bad row '" + line + "'");
   Row r;
   try {

@@ -47,7 +47,7 @@ std::string write_stages(const fs::path& dir) {
   std::ifstream in(dir / "inputs.csv");
   std::string line;
   if (!std::getline(in, line)) throw std::runtime_error((dir / "inputs.csv").string() + ": empty");
-  const std::vector<std::string> header = split(line, ',');
+  const std::vector<std::string> header = split_csv(line);
   auto column = [&](const std::string& name) {
     for (std::size_t i = 0; i < header.size(); ++i)
       if (header[i] == name) return i;
@@ -60,7 +60,7 @@ std::string write_stages(const fs::path& dir) {
   std::map<std::tuple<std::string, std::size_t, std::size_t, long>, std::pair<std::string, std::string>> names;
   std::map<std::string, FamilyStages> families;
   while (std::getline(in, line)) {
-    const std::vector<std::string> f = split(line, ',');
+    const std::vector<std::string> f = split_csv(line);
     if (f.size() != header.size()) throw std::runtime_error((dir / "inputs.csv").string() + ": bad row '" + line + "'");
     if (f[c_query] != to_string(study::Query::cylinder_cylinder)) continue;
     const long bits = f[c_bits].empty() ? 0 : std::stol(f[c_bits]);
