@@ -183,12 +183,17 @@ int main(int argc, char** argv) {
   cases->add_option("--seed", case_spec.seed, "Random seed (default 1, the study's)")->check(uint64_option());
   cases->add_option("--threads", case_spec.threads, "Threads certifying the cases (default 2; 0 = all cores)")
       ->check(CLI::Range(0u, 1024u));
-  cases->add_option("--map-cells", case_spec.map_cells,
-                    "Also the cells of the query's failure maps, N x N each, N from 2 to 1024 (an answers file\n"
-                    "answering them gives `certcyl judge --answers` the maps; default none)")
-      ->check(CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 2, 1024); }, "2..1024"));
-  cases->add_option("--map-step", case_spec.map_step, "Ulps between neighbouring cells of a map, 1 to 10^9 (default 1)")
-      ->check(CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 1, 1000000000); }, "1..10^9"));
+  // The failure maps' size and step, in the ranges of the study's --config keys of the same names
+  // (map_cells, map_step), for `cases` and `judge`.
+  const auto add_map_options = [](CLI::App* command, int& cells, long& step, const std::string& cells_help) {
+    command->add_option("--map-cells", cells, cells_help)
+        ->check(CLI::Validator([](std::string& v) { return certcyl::cli::integer_error(v, 2, 1024); }, "2..1024"));
+    command->add_option("--map-step", step, "Ulps between neighbouring cells of a map, 1 to 10^9 (default 1)")
+        ->check(CLI::Validator([](std::string& v) { return certcyl::cli::integer_error(v, 1, 1000000000); }, "1..10^9"));
+  };
+  add_map_options(cases, case_spec.map_cells, case_spec.map_step,
+                  "Also the cells of the query's failure maps, N x N each, N from 2 to 1024 (an answers file\n"
+                  "answering them gives `certcyl judge --answers` the maps; default none)");
 
   certcyl::cli::JudgeOptions judge_options;
   CLI::App* judge = app.add_subcommand("judge", "Score a method's answers to the study's cases against the certified answers");
@@ -199,7 +204,8 @@ int main(int argc, char** argv) {
       "`certcyl cases` makes them (--query, --family, --size, --seed; a plugin without --query: every\n"
       "query it exports). Answers: separated, touching, overlapping, intersecting, undecided, invalid.\n"
       "Writes results/<name>/ (families.csv, counterexamples.jsonl, answers.jsonl, summary.txt, index.html;\n"
-      "with --plugin or --exec also failure_maps/, failure_maps.csv, hunt.csv and speed.csv) and prints\n"
+      "with --plugin or --exec also failure_maps/, failure_maps.csv, hunt.csv and speed.csv; the maps also\n"
+      "with --answers when the cases file holds their cells, `certcyl cases --map-cells N`) and prints\n"
       "the summary. --map-cells, --map-step and --hunt-evaluations size the failure maps and the hunt.\n"
       "Exit status: 0 every case judged, 1 otherwise (what was judged before the error is written).");
   judge->add_option("--answers", judge_options.answers_file, "The method's answers, one JSON line per case");
@@ -221,14 +227,11 @@ int main(int argc, char** argv) {
                     "Seconds --exec's program or --plugin's function may take for one answer; then it is killed,\n"
                     "the answers before it are kept and the judge exits 1 naming the line (default 60; 0: no limit)")
       ->check(finite_in(0.0, 1e6));
-  // The failure maps' and the hunt's sizes, in the ranges of the study's --config keys of the
-  // same names (map_cells, map_step, hunt_evaluations).
-  judge->add_option("--map-cells", judge_options.map_cells,
-                    "Failure maps of N x N cells, N from 2 to 1024 (--plugin and --exec; default the size's: 16 tiny,\n"
-                    "32 small, 64 default, 128 large)")
-      ->check(CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 2, 1024); }, "2..1024"));
-  judge->add_option("--map-step", judge_options.map_step, "Ulps between neighbouring cells of a map, 1 to 10^9 (default 1)")
-      ->check(CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 1, 1000000000); }, "1..10^9"));
+  // The failure maps' and the hunt's sizes (the hunt's in the range of the study's
+  // hunt_evaluations).
+  add_map_options(judge, judge_options.map_cells, judge_options.map_step,
+                  "Failure maps of N x N cells, N from 2 to 1024 (--plugin and --exec; default the size's: 16 tiny,\n"
+                  "32 small, 64 default, 128 large; --answers: the cases file's map cells, and only their N)");
   judge->add_option("--hunt-evaluations", judge_options.hunt_evaluations,
                     "Inputs the worst-input hunt evaluates per query, 1 to 10^8, a quarter of them for cylinder\n"
                     "pairs (--plugin and --exec; default the size's: 20 tiny, 150 small, 1000 default, 5000 large)")
