@@ -40,21 +40,14 @@ void check_method_name(const std::string& name, const std::string& where) {
 // (cells, step, seed), each cell's answer looked up by its id; a cell the cases file does not
 // hold, or holds with another input than the map's, is an error of the exchange for that map.
 judging::MapsResult answered_maps(const std::filesystem::path& dir, const std::string& method, const std::vector<Case>& given,
-                                  const std::map<std::string, std::optional<judging::Answered>>& answer_of, int map_cells,
-                                  unsigned threads) {
+                                  const std::map<std::string, std::optional<judging::Answered>>& answer_of, unsigned threads) {
   const MapCell m = *given.front().map;
   std::vector<study::Query> queries;
   std::map<std::string, const Case*> by_id;
   for (const Case& c : given) {
-    if (c.map->cells != m.cells || c.map->step != m.step || c.map->seed != m.seed)
-      throw std::runtime_error("--cases: line " + std::to_string(c.line) + ": map cell " + c.id + " of other maps (meta.map) than line " +
-                               std::to_string(given.front().line) + "'s");
     if (std::find(queries.begin(), queries.end(), c.query) == queries.end()) queries.push_back(c.query);
     by_id[c.id] = &c;
   }
-  if (map_cells > 0 && map_cells != m.cells)
-    throw std::invalid_argument("--map-cells " + std::to_string(map_cells) + ": the cases file's maps have " + std::to_string(m.cells) +
-                                " x " + std::to_string(m.cells) + " cells");
   const judging::AnswerSource source = [&](const std::vector<Case>& cells) {
     judging::Answers a;
     a.answers.resize(cells.size());
@@ -155,6 +148,17 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
       given_cells.assign(std::make_move_iterator(cells), std::make_move_iterator(cases.end()));
       cases.erase(cells, cases.end());
       if (cases.empty() && !given_cells.empty()) throw std::runtime_error("--cases: only failure-map cells, no case to judge");
+      // One set of maps (before anything is judged).
+      for (const Case& c : given_cells) {
+        const MapCell& m = *given_cells.front().map;
+        if (c.map->cells != m.cells || c.map->step != m.step || c.map->seed != m.seed)
+          throw std::runtime_error("--cases: line " + std::to_string(c.line) + ": map cell " + c.id + " of other maps (meta.map) than line " +
+                                   std::to_string(given_cells.front().line) + "'s");
+      }
+      if (!o.answers_file.empty() && !given_cells.empty() && o.map_cells > 0 && o.map_cells != given_cells.front().map->cells)
+        throw std::invalid_argument("--map-cells " + std::to_string(o.map_cells) + ": the cases file's maps have " +
+                                    std::to_string(given_cells.front().map->cells) + " x " + std::to_string(given_cells.front().map->cells) +
+                                    " cells");
     }
     if (plugin) {
       std::erase_if(cases, [&](const Case& c) {
@@ -219,7 +223,7 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
       } else if (!o.answers_file.empty() && cell_answers.empty()) {
         maps->note = "an answers file gives them when the cases file holds the maps' cells (certcyl cases --map-cells N)";
       } else if (!o.answers_file.empty()) {
-        *maps = answered_maps(folder, method, given_cells, cell_answers, o.map_cells, std::max(1u, o.spec.threads));
+        *maps = answered_maps(folder, method, given_cells, cell_answers, std::max(1u, o.spec.threads));
       } else if (!answers.failure.empty()) {
         maps->note = "not drawn, the method having failed on the cases";
       } else {

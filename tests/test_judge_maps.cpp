@@ -384,6 +384,7 @@ BOOST_AUTO_TEST_CASE(an_answers_file_gives_the_maps_when_the_cases_hold_their_ce
   r = s.run(certcyl + " judge --answers cell_answers.jsonl --cases cells.jsonl --name other --map-cells 8");
   BOOST_TEST(r.status == 1);
   BOOST_TEST(r.err.find("--map-cells 8: the cases file's maps have 16 x 16 cells") != std::string::npos, r.err);
+  BOOST_TEST(!fs::exists(s.dir / "results/other"));  // refused before anything is judged
   {
     std::ofstream out(s / "only.jsonl");
     for (const std::string& l : lines)
