@@ -4,7 +4,6 @@
 #include "judge.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -69,28 +68,14 @@ judging::MapsResult answered_maps(const std::filesystem::path& dir, const std::s
   return judging::judge_failure_maps(dir, method, queries, source, m.cells, m.step, m.seed, threads);
 }
 
-// s as one word of /bin/sh.
-std::string shell_word(const std::string& s) {
-  std::string q = "'";
-  for (const char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
 // The study's figures with the judged method's point (JudgeOptions::study_dir), into
 // folder/figures; what happened on `out`. Returns false when they could not be drawn.
 bool draw_on_study(const std::filesystem::path& study, const std::filesystem::path& folder, std::ostream& out) {
-  const std::string script = detail::plot_study_script();
   const std::filesystem::path figures = folder / "figures";
-  const std::string cmd = "/usr/bin/python3 " + shell_word(script) + " " + shell_word(study.string()) + " --judged " +
-                          shell_word(folder.string()) + " --out " + shell_word(figures.string());
-  if (!std::filesystem::exists(script) || std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") != 0) {
-    out << "figures: /usr/bin/python3 with matplotlib (Debian python3-matplotlib) not found; when it is installed run\n  " << cmd << '\n';
+  if (!detail::run_plot_study(detail::shell_word(study.string()) + " --judged " + detail::shell_word(folder.string()) + " --out " +
+                                  detail::shell_word(figures.string()),
+                              out))
     return false;
-  }
-  if (std::system((cmd + " >/dev/null").c_str()) != 0) {
-    out << "figures: the plotting script failed; run it by hand to see why:\n  " << cmd << '\n';
-    return false;
-  }
   out << "figures: " << figures.string() << " (the study's figures with the judged method's point; page "
       << (figures / "index.html").string() << ")\n";
   return true;

@@ -162,8 +162,14 @@ std::string write_stages(const fs::path& dir);
 // Runs experiments/plot_study.py on dir when wanted and possible (figures/ and index.html, one
 // line per figure on standard error), else says how (study_report.cpp).
 void run_plots(const fs::path& dir, bool want, std::ostream& out);
-// The path of experiments/plot_study.py in the source tree this program was built from.
-std::string plot_study_script();
+// s as one word of /bin/sh (in single quotes).
+std::string shell_word(const std::string& s);
+// `/usr/bin/python3 <experiments/plot_study.py of the source tree this program was built from>
+// ARGS` (ARGS already shell words).
+std::string plot_study_command(const std::string& args);
+// Runs that command (its standard output discarded); false, with the reason and the command to
+// run by hand on `out`, when /usr/bin/python3 has no matplotlib or the script fails.
+bool run_plot_study(const std::string& args, std::ostream& out);
 
 // ---- The sealed results folder (study_manifest.cpp) --------------------------------------------
 

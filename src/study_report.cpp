@@ -156,26 +156,41 @@ std::string write_summary(const fs::path& dir) {
   return table;
 }
 
-std::string plot_study_script() { return std::string(CERTCYL_SOURCE_DIR) + "/experiments/plot_study.py"; }
+std::string shell_word(const std::string& s) {
+  std::string q = "'";
+  for (const char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
 
-void run_plots(const fs::path& dir, bool want, std::ostream& out) {
-  const std::string script = plot_study_script();
-  const std::string cmd = "/usr/bin/python3 '" + script + "' '" + dir.string() + "'";
-  if (!want) {
-    out << "figures: run  " << cmd << '\n';
-    return;
-  }
-  const bool have = fs::exists(script) && std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") == 0;
+std::string plot_study_command(const std::string& args) {
+  return "/usr/bin/python3 " + shell_word(std::string(CERTCYL_SOURCE_DIR) + "/experiments/plot_study.py") + " " + args;
+}
+
+bool run_plot_study(const std::string& args, std::ostream& out) {
+  const std::string cmd = plot_study_command(args);
+  const bool have = fs::exists(std::string(CERTCYL_SOURCE_DIR) + "/experiments/plot_study.py") &&
+                    std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") == 0;
   if (!have) {
     out << "figures: /usr/bin/python3 with matplotlib (Debian python3-matplotlib) not found; when it is installed run\n  " << cmd << '\n';
+    return false;
+  }
+  if (std::system((cmd + " >/dev/null").c_str()) != 0) {
+    out << "figures: the plotting script failed; run it by hand to see why:\n  " << cmd << '\n';
+    return false;
+  }
+  return true;
+}
+
+void run_plots(const fs::path& dir, bool want, std::ostream& out) {
+  const std::string args = shell_word(dir.string());
+  if (!want) {
+    out << "figures: run  " << plot_study_command(args) << '\n';
     return;
   }
   // The script names each figure on standard error as it writes it (plotting takes longer than a
   // tiny study); its standard output, one closing line, is not wanted.
   std::cerr << "figures: plotting into " << (dir / "figures").string() << " (experiments/plot_study.py)" << std::endl;
-  if (std::system((cmd + " >/dev/null").c_str()) != 0) {
-    out << "figures: the plotting script failed; run it by hand to see why:\n  " << cmd << '\n';
-  } else {
+  if (run_plot_study(args, out)) {
     out << "figures: " << (dir / "figures").string() << '\n';
     out << "report: " << (dir / "index.html").string() << '\n';
   }
