@@ -69,6 +69,19 @@ BOOST_AUTO_TEST_CASE(equal_midpoints_overlap) {
   BOOST_TEST((*r.witness == Point3<Q>{0, 0, 0}));
 }
 
+BOOST_AUTO_TEST_CASE(a_known_gap_enclosure_is_finite) {
+  // Found by the pair fuzz harness: a direction's ratio bound overflowed to +inf and the gap
+  // was reported known with phi_upper = inf. The pair overlaps (the centre of b's first end disc lies inside a);
+  // an overflowed bound is dropped, so the enclosure is finite or not known, in both orders.
+  const Cylinder<Q> a{{Q(0x1.6cp+6), Q(-1), Q(-0x1.dd6fafeffffffp+356)}, {Q(-0x1p-5), Q(0), Q(0x1.8p-1)}, Q(1)};
+  const Cylinder<Q> b{{Q(0x1.4p-1), Q(-0.25), Q(-1)}, {Q(-0x1.afeffffffff02p+368), Q(0x1.3005a0200a5a5p+417), Q(0.125)}, Q(0x1.08p+3)};
+  for (const auto& r : {query(a, b), query(b, a)}) {
+    BOOST_TEST(to_string(r.answer) == "overlapping");
+    const certcyl::CylinderGap g = r.gap();
+    BOOST_TEST((!g.known || (std::isfinite(g.phi_upper) && g.phi_upper > 1 && g.phi_lower <= g.phi_upper)));
+  }
+}
+
 BOOST_AUTO_TEST_CASE(rejects_invalid_input) {
   const Cylinder<Q> a{{0, 0, 0}, {0, 0, 1}, 1};
   BOOST_CHECK_THROW(certified_cylinder_cylinder(a, cyl({1, 1, 1}, {1, 1, 1}, 1)), certcyl::InvalidInput);

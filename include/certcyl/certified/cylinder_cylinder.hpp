@@ -615,7 +615,10 @@ class CylinderCylinderSolver {
   }
 
   // ---- certified bounds on phi* ------------------------------------------------------------------
+  // A bound that overflowed (or is NaN) says nothing: it is dropped, so that a known enclosure
+  // is finite (CylinderGap::known).
   void lower_phi_upper(double u) {
+    if (!(u < HUGE_VAL)) return;
     if (!phi_upper_ || u < *phi_upper_) phi_upper_ = u;
   }
   void raise_phi_lower(double sigma_upper) {
