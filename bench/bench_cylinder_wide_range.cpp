@@ -10,7 +10,8 @@
 // contact type turned by the rational rotation of quaternion (1, 2, 3, 4), translated by
 // (10^60 + 7) / (3 10^59 + 1) and 1/3, and moved 2^-k apart and 2^-k into overlap along its
 // contact normal, k = 100, 1000, 5000, 10000 (rim-rim k = 5000 took minutes before the corner
-// planes could go on between the rounds). Per family: the time of one call on each
+// planes could go on between the rounds). BM_fuzz_found/<pair>: the slowest pairs the pair fuzz
+// harness found (binary64; their answers worked out by hand, below). Per family: the time of one call on each
 // pair (one call: the slowest pairs took seconds before the corner candidates), as mean, median
 // and max, the slowest pair, the answers and the stages that decided. The exit status is 1 when
 // an answer contradicts the construction or is undecided.
@@ -83,6 +84,41 @@ std::vector<Family> deep_families() {
   return out;
 }
 
+// The fuzz harness's slowest pairs (seconds each): contacts that are degenerate twice over (a
+// line of one boundary tangent to the other's rim circle in a common plane, or a wall lying in a
+// cap plane), opened into overlaps 2^-600 .. 2^-1035 thin by tilts far below an ulp of the
+// contact's coordinates. The overlaps, by hand (r = 0x1.38p-2):
+//  rim_line_tangent_400: a's cap plane y ~ 0 (tilt 2 / 2^401 in x) against b's wall, tangent to
+//    it along x = r, y = 0 (b tilted 2^-411 toward y < 0), meeting a's rim at (r, 0, 99): the
+//    cap plane lies about 2^-400 above b's lowest line there.
+//  rim_line_tangent_600: a's tube top line x = 0, z = r against b's cap plane z = r, tangent to
+//    b's rim at (0, r, r); a's axis sits 2^-394 toward b, b's cap plane tilts about 2^-410 in y: both
+//    hold points 2^-198 before the tangent point and about 2^-608 below z = r.
+//  pancake_rim_cap: a disk 2^-828 thick whose rim reaches b's cap plane at (0, 3/4, 0): its
+//    upper face's rim point crosses the plane by about 2^-829.
+//  wall_on_tilted_cap: b's lowest line lies in z = 2 and crosses a's unit cap disk near (1, 0);
+//    a's axis is tilted by about 2^-1035, which lifts its cap plane by about 2^-1035 at x ~ 1.
+std::vector<Family> fuzz_found_families() {
+  static std::vector<WideCase> cases;
+  using cctest::Q;
+  const auto cyl = [](double x0, double y0, double z0, double x1, double y1, double z1, double r) {
+    return cctest::Cylinder<Q>{{Q(x0), Q(y0), Q(z0)}, {Q(x1), Q(y1), Q(z1)}, Q(r)};
+  };
+  const double r = 0x1.38p-2;
+  const auto add = [&](const std::string& name, const cctest::Cylinder<Q>& a, const cctest::Cylinder<Q>& b) {
+    cases.push_back({name, a, b, certcyl::Answer::overlapping, true});
+  };
+  add("rim_line_tangent_400", cyl(0, 0, 0x1.8cp+6, 2, -0x1.01414fb0000fap+401, 0x1.72727275a27d5p-397, r),
+      cyl(r, 0, 0x1.00002p+417, r, r, r, r));
+  add("rim_line_tangent_600", cyl(0, 2, 0, 0x1.8cp+6, -0x1.01414fbp+401, 0x1.72727275a27d5p-397, r),
+      cyl(r, -0x1.8cp+6, 0x1.0000224p+417, r, r, r, r));
+  add("pancake_rim_cap", cyl(0, 0, 0, 0, 0, 0x1.fp-829, 0x1.8p-1), cyl(0x1.8p-1, 0x1.7p+0, 0x1.8p-1, 0x1.8p-1, 0x1.8p-1, 0, 0x1.2p+3));
+  add("wall_on_tilted_cap", cyl(0x0.000fffb0008p-1022, 0, 0, 0, 0, 2, 1), cyl(-1, 0x1.8p+6, 0x1.8p+1, 1, 0, 0x1.8p+1, 1));
+  std::vector<Family> out;
+  for (const WideCase& c : cases) out.push_back({c.name, {&c}});
+  return out;
+}
+
 void run_family(benchmark::State& state, const Family& f) {
   std::vector<double> t;
   std::map<std::string, int> stages;
@@ -136,6 +172,11 @@ const bool registered = [] {
   static const std::vector<Family> deep = deep_families();
   for (const Family& f : deep)
     benchmark::RegisterBenchmark(("BM_deep/" + f.name).c_str(), [&f](benchmark::State& s) { run_family(s, f); })
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1);
+  static const std::vector<Family> fuzz_found = fuzz_found_families();
+  for (const Family& f : fuzz_found)
+    benchmark::RegisterBenchmark(("BM_fuzz_found/" + f.name).c_str(), [&f](benchmark::State& s) { run_family(s, f); })
         ->Unit(benchmark::kMillisecond)
         ->Iterations(1);
   return true;

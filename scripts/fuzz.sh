@@ -11,10 +11,12 @@
 # what the others add), each with its own log and random seed: each of its inputs runs two exact
 # queries and their exact re-checks, so the sanitised build reaches a few thousand inputs a
 # minute and this one several times more per process.
-# Prints the executions per harness (summed over the processes); exits non-zero if a harness found a crash, a hang (one
-# input over 10 s; 60 s for cylinder pairs), a memory blow-up, a leak, undefined behaviour, a
-# wrong certified answer or an undecided cylinder pair (the input is kept in
-# build-sanitize/findings/ or build-fuzz/findings/).
+# Prints the executions per harness (summed over the processes) and its slowest input; exits
+# non-zero if a harness found a crash, a hang (one input over 10 s; 600 s for cylinder pairs), a
+# memory blow-up, a leak, undefined behaviour, a wrong certified answer or an undecided cylinder
+# pair (the input is kept in build-sanitize/findings/ or build-fuzz/findings/). Inputs over 10 s
+# are kept there too (slow-unit-*), as measurements: the cost of a pair is not a pass/fail
+# criterion here (bench/ measures it), only an input that looks like a hang is.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
@@ -29,11 +31,13 @@ summary=()
 # summary.
 run() {
   local h="$1" build="$2" work="$3" seconds="$4" processes="${5:-1}"
-  # -timeout: one input taking longer than 10 s is a hang (60 s for the cylinder pairs, which run
-  # without a resource limit: a pair spanning two thousand binades can take seconds under the
-  # sanitizers); -rss_limit_mb: a memory blow-up.
+  # -timeout: one input taking longer than 10 s is a hang (600 s for the cylinder pairs, which
+  # run without a resource limit: the fuzzer's hardest pairs, overlaps 2^-1000 thin beside
+  # numbers spanning hundreds of binades, are decided by the complete arbitrary-precision stage
+  # at 2,048 bits and more, in seconds, and over a minute on a loaded machine under the
+  # sanitizers; bench/RESULTS.md); -rss_limit_mb: a memory blow-up.
   local timeout=10
-  [ "$h" = fuzz_cylinder_cylinder ] && timeout=60
+  [ "$h" = fuzz_cylinder_cylinder ] && timeout=600
   local logs=() pids=() k
   for ((k = 1; k <= processes; ++k)); do
     local log="$build/$h.log"
@@ -43,7 +47,7 @@ run() {
       -artifact_prefix="$build/findings/$h-" -print_final_stats=1 > "$log" 2>&1 &
     pids+=($!)
   done
-  local total=0 counted=1 runs
+  local total=0 counted=1 runs slowest=0 t
   for k in "${!pids[@]}"; do
     local log="${logs[$k]}"
     if ! wait "${pids[$k]}"; then
@@ -53,11 +57,13 @@ run() {
     fi
     runs=$(grep -m1 -oE "stat::number_of_executed_units: *[0-9]+" "$log" | grep -oE "[0-9]+$" || true)
     if [ -n "$runs" ]; then total=$((total + runs)); else counted=0; fi
+    t=$(grep -m1 -oE "stat::slowest_unit_time_sec: *[0-9]+" "$log" | grep -oE "[0-9]+$" || true)
+    if [ -n "$t" ] && [ "$t" -gt "$slowest" ]; then slowest=$t; fi
   done
   [ "$counted" = 1 ] || total="? (a process printed no count; at least $total)"
   local each=""
   [ "$processes" -gt 1 ] && each=" ($processes processes)"
-  summary+=("$h ($build): $total executions in ${seconds} s$each")
+  summary+=("$h ($build): $total executions in ${seconds} s$each, slowest input ${slowest} s")
 }
 for h in "${harnesses[@]}"; do
   work="$build/corpus/$h"

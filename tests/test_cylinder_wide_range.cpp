@@ -551,3 +551,29 @@ BOOST_AUTO_TEST_CASE(slivers_beside_a_cap_are_decided_by_the_exact_candidates) {
                 BOOST_TEST(r.counters.ellipsoid_steps == 0u);
               });
 }
+
+// A wall sunk 2^-1035 into a tilted cap (found by the pair fuzz harness, and took seconds in
+// the ellipsoid stage at 2,048 bits). a is the unit cylinder from (eps, 0, 0) to (0, 0, 2),
+// eps = 0x0.000fffb0008p-1022 (about 2^-1034): its cap plane z = 2 + eps x / 2 rises above
+// z = 2 for x > 0. b (radius 1, axis from (-1, 96, 3) to (1, 0, 3)) has its lowest line in
+// z = 2, and that line crosses a's cap disk near (1, 0, 2): there b dips about 2^-1035 below
+// a's cap: overlapping. Decided by the cap-disk point nearest a's centre on b's axis projected
+// onto a's cap plane, pushed into a: no Gmpfr round, no ellipsoid step.
+BOOST_AUTO_TEST_CASE(a_wall_sunk_into_a_tilted_cap_is_decided_by_the_exact_candidates) {
+  const double eps = 0x0.000fffb0008p-1022;
+  const auto to_q = [](double x) { return Q(x); };
+  const certcyl::Cylinder<double> a{{eps, 0, 0}, {0, 0, 2}, 1};
+  const certcyl::Cylinder<double> b{{-1, 96, 3}, {1, 0, 3}, 1};
+  for (const bool swap : {false, true}) {
+    const certcyl::Cylinder<double>& x = swap ? b : a;
+    const certcyl::Cylinder<double>& y = swap ? a : b;
+    const auto r = certcyl::certified_cylinder_cylinder(x, y);
+    BOOST_TEST_CONTEXT((swap ? "swapped" : "in order") << ", stage " << certcyl::to_string(r.stage)) {
+      BOOST_TEST(r.answer == Answer::overlapping);
+      BOOST_TEST(certcyl::recheck::check_cylinder_pair(x.map(to_q), y.map(to_q), r) == "");
+      BOOST_TEST((r.stage == certcyl::CylinderStage::gmpfr));
+      BOOST_TEST(r.gmpfr_precision == 0);
+      BOOST_TEST(r.counters.ellipsoid_steps == 0u);
+    }
+  }
+}

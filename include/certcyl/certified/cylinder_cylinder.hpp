@@ -1524,11 +1524,14 @@ class CylinderCylinderSolver {
   }
 
   // Points of a cap disk of i strictly inside j, pushed into i: on the cap plane through the end
-  // E (inward normal n = +-A_i), Y is the point where j's axis line crosses it, or the point
-  // nearest E of the line where it meets j's mid-plane. When Y is in the open disk (|Y - E| <
-  // r_i) and strictly inside j, Y + eta n is interior to both for eta |A_i| below both Y's depth
-  // in j and r_i - |Y - E| >= (r_i^2 - |Y - E|^2) / (2 r_i). They decide flat cylinders whose
-  // slabs overlap only far from the axes, beside a cap of one of them.
+  // E (inward normal n = +-A_i), Y is the point where j's axis line crosses it, the point
+  // nearest E of the line where it meets j's mid-plane, or the point nearest E of j's axis line
+  // projected orthogonally onto it (the cap plane's points nearest j's axis: where a wall of j
+  // lying along the cap plane, or dipping below a cap tilted by far less than an ulp, is
+  // deepest). When Y is in the open disk (|Y - E| < r_i) and strictly inside j, Y + eta n is
+  // interior to both for eta |A_i| below both Y's depth in j and r_i - |Y - E| >=
+  // (r_i^2 - |Y - E|^2) / (2 r_i). They decide flat cylinders whose slabs overlap only far from
+  // the axes, beside a cap of one of them, and walls sunk 2^-1000 into a cap.
   // Once per query, after the corner candidates (they cost a few exact checks of large numbers,
   // which most pairs reaching the exact candidates do not need).
   bool cap_disk_candidates() {
@@ -1542,7 +1545,7 @@ class CylinderCylinderSolver {
     for (const bool far_end : {false, true}) {
       const Point3<Rational>& E = far_end ? ci.p1 : ci.p0;
       const Vec3<Rational> n = far_end ? Vec3<Rational>(-Ai) : Ai;  // into i
-      std::array<std::optional<Point3<Rational>>, 2> Y;
+      std::array<std::optional<Point3<Rational>>, 3> Y;
       const Rational a = dot(Aj, Ai);
       if (a != 0) Y[0] = cj.p0 + (dot(E - cj.p0, Ai) / a) * Aj;  // j's axis line on the cap plane
       const Vec3<Rational> L = cross(Ai, Aj);
@@ -1551,6 +1554,11 @@ class CylinderCylinderSolver {
         const Rational LL = dot(L, L);
         const Point3<Rational> X0 = planes_meet(Ai, dot(Ai, E), Aj, dot(Aj, mj), LL);
         Y[1] = X0 + (dot(E - X0, L) / LL) * L;
+        // j's axis projected onto the cap plane: through Q0 along P = A_j - (a / A_i.A_i) A_i
+        // (not zero: A_i x A_j != 0), and its point nearest E.
+        const Vec3<Rational> P = Aj - (a / AAi) * Ai;
+        const Point3<Rational> Q0 = cj.p0 - (dot(cj.p0 - E, Ai) / AAi) * Ai;
+        Y[2] = Q0 + (dot(E - Q0, P) / dot(P, P)) * P;
       }
       for (const std::optional<Point3<Rational>>& y : Y) {
         if (!y) continue;
