@@ -1537,19 +1537,20 @@ class CylinderCylinderSolver {
   bool cap_disk_candidates() {
     if (cap_disks_tried_) return false;
     cap_disks_tried_ = true;
-    return cap_disk_witness(0) || cap_disk_witness(1);
+    return cap_disk_witness(0, false) || cap_disk_witness(1, false) || cap_disk_witness(0, true) || cap_disk_witness(1, true);
   }
-  bool cap_disk_witness(int i) {
+  // rim: the rim points (they need square roots at the input's span), after the others failed.
+  bool cap_disk_witness(int i, bool rim) {
     const auto [ci, cj, Ai, Aj, AAi, AAj] = roles(i);
     const Point3<Rational> mj = cj.p0 + Aj / Rational(2);
     for (const bool far_end : {false, true}) {
       const Point3<Rational>& E = far_end ? ci.p1 : ci.p0;
       const Vec3<Rational> n = far_end ? Vec3<Rational>(-Ai) : Ai;  // into i
-      std::array<std::optional<Point3<Rational>>, 3> Y;
+      std::array<std::optional<Point3<Rational>>, 5> Y;
       const Rational a = dot(Aj, Ai);
-      if (a != 0) Y[0] = cj.p0 + (dot(E - cj.p0, Ai) / a) * Aj;  // j's axis line on the cap plane
+      if (!rim && a != 0) Y[0] = cj.p0 + (dot(E - cj.p0, Ai) / a) * Aj;  // j's axis line on the cap plane
       const Vec3<Rational> L = cross(Ai, Aj);
-      if (!(L.x == 0 && L.y == 0 && L.z == 0)) {
+      if (!rim && !(L.x == 0 && L.y == 0 && L.z == 0)) {
         // The line {(X - E).A_i = 0} n {(X - m_j).A_j = 0}: a point X0 of it, then the nearest to E.
         const Rational LL = dot(L, L);
         const Point3<Rational> X0 = planes_meet(Ai, dot(Ai, E), Aj, dot(Aj, mj), LL);
@@ -1560,14 +1561,48 @@ class CylinderCylinderSolver {
         const Point3<Rational> Q0 = cj.p0 - (dot(cj.p0 - E, Ai) / AAi) * Ai;
         Y[2] = Q0 + (dot(E - Q0, P) / dot(P, P)) * P;
       }
+      // The points of i's rim deepest into the half-space of each cap of j (inward normal m):
+      // E + r_i u / s with u the part of m in the cap plane and s >= |u| (|u| at q = span + 128
+      // bits, then raised by 2^(2 - q): a rim crossing a cap plane by 2^-800 beside numbers
+      // spanning 800 binades), so in the closed disk, at most about 2^(2 - q) r_i in.
+      for (const bool j_far : {false, true}) {
+        if (!rim) break;
+        const Vec3<Rational> m = j_far ? Vec3<Rational>(-Aj) : Aj;
+        const Vec3<Rational> u = m - (dot(m, Ai) / AAi) * Ai;
+        const Rational uu = dot(u, u);
+        if (uu == 0) continue;
+        const long q = input_span_bits() + 128;
+        Rational s;
+        {
+          GmpfrPrecision scope(q);
+          s = to_rational(CGAL::sqrt(nt::from_rational<CGAL::Gmpfr>(uu)));
+        }
+        s = s + times_two_power(s, 2 - q);
+        Y[3 + j_far] = E + (ci.radius / s) * u;
+      }
+      const Rational& ri = ci.radius;  // plain references: clang before 16 cannot capture structured bindings
+      const Rational& AAi_ = AAi;
+      const auto try_point = [&](const Point3<Rational>& y, const std::optional<long>& depth) {
+        const Vec3<Rational> radial = y - E;
+        const Rational disk = ri * ri - dot(radial, radial);
+        return disk > 0 && depth && stepped_witness(y, n, AAi_, std::min(*depth, binade(disk) - binade(ri) - 1));
+      };
       for (const std::optional<Point3<Rational>>& y : Y) {
         if (!y) continue;
-        const Vec3<Rational> radial = *y - E;
-        const Rational disk = ci.radius * ci.radius - dot(radial, radial);
-        if (!(disk > 0)) continue;
         const std::optional<long> depth = depth_binade(*y, cj, Aj, AAj);
         if (!depth) continue;
-        if (stepped_witness(*y, n, AAi, std::min(*depth, binade(disk) - binade(ci.radius) - 1))) return true;
+        if (try_point(*y, depth)) return true;
+        // Y on the rim or just outside it (a line of j tangent to i's rim, tilted far below an
+        // ulp): Y pulled toward E by about 2^(depth - 2), which keeps it inside j, and by about
+        // 2^(3 depth / 4), which keeps it inside j where j's boundary is tangent to the pull (a
+        // loss of about 2^(3 depth / 2) / r_j) and clears an overshoot of about 2^depth.
+        const Vec3<Rational> radial = *y - E;
+        for (const long pull : {*depth - 2, 3 * *depth / 4}) {
+          const long t = binade(ci.radius) - pull;
+          if (t <= 1) continue;
+          const Point3<Rational> z = *y - radial.map([t](const Rational& q) { return times_two_power(q, -t); });
+          if (try_point(z, depth_binade(z, cj, Aj, AAj))) return true;
+        }
       }
     }
     return false;
