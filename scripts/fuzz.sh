@@ -11,7 +11,7 @@
 # what the others add), each with its own log and random seed: each of its inputs runs two exact
 # queries and their exact re-checks, so the sanitised build reaches a few thousand inputs a
 # minute and this one several times more per process.
-# Prints the executions per harness (summed over the processes) and its slowest input; exits
+# Prints the executions per harness (summed over the processes) and its slowest input over 10 s; exits
 # non-zero if a harness found a crash, a hang (one input over 10 s; 600 s for cylinder pairs), a
 # memory blow-up, a leak, undefined behaviour, a wrong certified answer or an undecided cylinder
 # pair (the input is kept in build-sanitize/findings/ or build-fuzz/findings/). Inputs over 10 s
@@ -63,7 +63,10 @@ run() {
   [ "$counted" = 1 ] || total="? (a process printed no count; at least $total)"
   local each=""
   [ "$processes" -gt 1 ] && each=" ($processes processes)"
-  summary+=("$h ($build): $total executions in ${seconds} s$each, slowest input ${slowest} s")
+  # libFuzzer records an input's time only above -report_slow_units (10 s by default).
+  local slow="no input over 10 s"
+  if [ "$slowest" -gt 0 ]; then slow="slowest input ${slowest} s"; fi
+  summary+=("$h ($build): $total executions in ${seconds} s$each, $slow")
 }
 for h in "${harnesses[@]}"; do
   work="$build/corpus/$h"
