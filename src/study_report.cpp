@@ -162,13 +162,16 @@ std::string shell_word(const std::string& s) {
   return q + "'";
 }
 
-std::string plot_study_command(const std::string& args) {
-  return "/usr/bin/python3 " + shell_word(std::string(CERTCYL_SOURCE_DIR) + "/experiments/plot_study.py") + " " + args;
-}
+namespace {
+// experiments/plot_study.py of the source tree this program was built from.
+std::string plot_study_script() { return std::string(CERTCYL_SOURCE_DIR) + "/experiments/plot_study.py"; }
+}  // namespace
+
+std::string plot_study_command(const std::string& args) { return "/usr/bin/python3 " + shell_word(plot_study_script()) + " " + args; }
 
 bool run_plot_study(const std::string& args, std::ostream& out) {
   const std::string cmd = plot_study_command(args);
-  const bool have = fs::exists(std::string(CERTCYL_SOURCE_DIR) + "/experiments/plot_study.py") &&
+  const bool have = fs::exists(plot_study_script()) &&
                     std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") == 0;
   if (!have) {
     out << "figures: /usr/bin/python3 with matplotlib (Debian python3-matplotlib) not found; when it is installed run\n  " << cmd << '\n';
