@@ -19,8 +19,11 @@
 #define BOOST_TEST_MODULE line_static_filter
 #include <boost/test/unit_test.hpp>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <iostream>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -896,4 +899,73 @@ BOOST_AUTO_TEST_CASE(endpoint_nearest_doubles_tangent_at_the_foot_point) {
   print("tangent at the foot point", st);
   std::cout << "  tangent points: " << tangent_points << "\n";
   BOOST_TEST(tangent_points > 40);
+}
+
+// The fused product (DDFused: the exact error of a product by one fused multiply-add) gives the
+// Dekker product's results bit for bit, so the proof of line_double_double.hpp covers both: every
+// endpoint proof of the queries above, run with each product, proves the same double or fails
+// alike. On a processor without FMA only the Dekker proofs run (the count says so).
+BOOST_AUTO_TEST_CASE(fused_and_dekker_products_prove_the_same_endpoints) {
+  std::mt19937_64 rng(4099);
+  long compared = 0, proved = 0;
+  for (int i = 0; i < 6000; ++i) {
+    const Query x = make_query(rng, i % 6);
+    StaticCircularSigns s(x.origin, x.second, x.segment, x.cyl, /*escalate=*/true);
+    if (!s.usable()) continue;
+    const LineShape shape = line_shape_from(s, x.range);
+    if (shape.answer == Answer::separated || s.double_double_leaves() == nullptr) continue;
+    for (const BoundKind k : {shape.in, shape.out}) {
+      if (k == BoundKind::range_lo || k == BoundKind::range_hi) continue;
+      LineNearest n(s);
+      const std::optional<ProvedNearest> dekker = n.with_product(k, shape.tube, false);
+      if (dekker) ++proved;
+      if (!has_fused_multiply_add()) continue;
+      const std::optional<ProvedNearest> fused = n.with_product(k, shape.tube, true);
+      ++compared;
+      BOOST_TEST_CONTEXT("kind " << i % 6 << " #" << i) {
+        BOOST_TEST(fused.has_value() == dekker.has_value());
+        if (fused && dekker) BOOST_TEST(std::bit_cast<std::uint64_t>(fused->nearest) == std::bit_cast<std::uint64_t>(dekker->nearest));
+      }
+    }
+  }
+  std::cout << "fused and Dekker products: " << compared << " endpoint proofs compared (FMA "
+            << (has_fused_multiply_add() ? "present" : "absent") << "), " << proved << " proved\n";
+  BOOST_TEST(proved > 2000);
+  if (has_fused_multiply_add()) BOOST_TEST(compared > 2000);
+}
+
+namespace {
+// One product in each form, each compiled where FMA is used (the same dispatch as the proofs).
+#if CERTCYL_FUSED_DISPATCH
+[[gnu::target("fma"), gnu::flatten]] DD fused_product(const DD& x, const DD& y) { return DD(DDFused(x) * DDFused(y)); }
+#endif
+}  // namespace
+
+// Products over the whole window of line_double_double.hpp (magnitudes 2^-120 .. 2^100, low
+// parts up to half an ulp, every sign): the fused product equals Dekker's bit for bit.
+BOOST_AUTO_TEST_CASE(fused_product_equals_dekker_product_bit_for_bit) {
+  if (!has_fused_multiply_add()) {
+    BOOST_TEST_MESSAGE("no FMA on this processor: the Dekker product alone is used");
+    return;
+  }
+#if CERTCYL_FUSED_DISPATCH
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> mant(1, 2), half(-0.5, 0.5);
+  std::uniform_int_distribution<int> ex(-60, 50), sign(0, 1);
+  auto value = [&] {
+    const double hi = std::ldexp(mant(rng), ex(rng)) * (sign(rng) ? -1 : 1);
+    const double lo = half(rng) * std::ldexp(1.0, std::ilogb(hi) - 52);
+    const double s = hi + lo;  // a double-word value: |lo'| <= ulp(s) / 2
+    return DD(dd_real(s, lo - (s - hi)));
+  };
+  long differ = 0;
+  for (int i = 0; i < 1000000; ++i) {
+    const DD x = value(), y = value();
+    const DD a = x * y, b = fused_product(x, y);
+    if (std::bit_cast<std::uint64_t>(a.v.x[0]) != std::bit_cast<std::uint64_t>(b.v.x[0]) ||
+        std::bit_cast<std::uint64_t>(a.v.x[1]) != std::bit_cast<std::uint64_t>(b.v.x[1]))
+      ++differ;
+  }
+  BOOST_TEST(differ == 0);
+#endif
 }

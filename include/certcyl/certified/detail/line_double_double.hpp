@@ -39,6 +39,17 @@
 // QD's two_prod (hi = t - (t - a) with t = (2^27 + 1) a contracted to t - fma(2^27 + 1, a, -a)
 // is no longer a 26-bit half). The project builds without FMA code generation; a build that
 // enables it (__FMA__) is refused below rather than left to the compiler's contraction mode.
+//
+// The fused product (DDFused). The exact error of a product of doubles, a b - fl(a b), is a
+// double in the window (the argument above: no underflow, no overflow); Dekker's split forms it
+// exactly with 17 operations, a fused multiply-add fma(a, b, -fl(a b)) with one. DDFused is DD
+// with that one replacement, so its results are DD's bit for bit and the proof above applies
+// unchanged. It is used only inside functions compiled for a processor with FMA
+// ([[gnu::target("fma"), gnu::flatten]], chosen at run time by has_fused_multiply_add()), where
+// the fused multiply-add is one instruction (a part the compiler does not inline calls the C
+// library's fma, correctly rounded as well) and every other operation must still be rounded
+// once: the library is compiled with -ffp-contract=off (the CMake target adds it), and the tests
+// compare the fused and the Dekker results bit for bit.
 #pragma once
 
 #include <CGAL/Interval_nt.h>
@@ -58,34 +69,58 @@ static_assert(FLT_EVAL_METHOD == 0, "certcyl's double-double stage needs binary6
 namespace certcyl::detail {
 
 // A double-double value with QD's accurate addition and its product (the operations of the
-// proof above, nothing else).
-struct DD {
+// proof above, nothing else); Fused: the product's exact error term by a fused multiply-add
+// (header comment), for code compiled for a processor with FMA only.
+template <bool Fused>
+struct DDT {
   dd_real v;
 
-  DD() = default;
-  explicit DD(double x) : v(x) {}
-  explicit DD(const dd_real& x) : v(x) {}
+  DDT() = default;
+  explicit DDT(double x) : v(x) {}
+  explicit DDT(const dd_real& x) : v(x) {}
+  template <bool F>
+  explicit DDT(const DDT<F>& x) : v(x.v) {}
 
   double hi() const { return v.x[0]; }
 
-  friend DD operator+(const DD& x, const DD& y) { return DD(dd_real::ieee_add(x.v, y.v)); }
-  friend DD operator-(const DD& x, const DD& y) { return DD(dd_real::ieee_add(x.v, -y.v)); }
+  friend DDT operator+(const DDT& x, const DDT& y) { return DDT(dd_real::ieee_add(x.v, y.v)); }
+  friend DDT operator-(const DDT& x, const DDT& y) { return DDT(dd_real::ieee_add(x.v, -y.v)); }
   // QD's operator* (qd/dd_inline.h: two_prod of the high parts, the cross terms, quick_two_sum)
   // written out, with Dekker's split (qd/inline.h split) without QD's rescaling branch for
   // operands above 2^996: in the window no operand reaches it (header comment), so the result
   // is QD's, bit for bit, at fewer instructions and inlined.
-  [[gnu::always_inline]] friend DD operator*(const DD& x, const DD& y) {
+  [[gnu::always_inline]] friend DDT operator*(const DDT& x, const DDT& y) {
     const double a = x.v.x[0], b = y.v.x[0];
     const double p = a * b;
-    const double ta = 134217729.0 * a, tb = 134217729.0 * b;  // 2^27 + 1
-    const double ah = ta - (ta - a), bh = tb - (tb - b);
-    const double al = a - ah, bl = b - bh;
-    double e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    double e;
+    if constexpr (Fused) {
+      e = __builtin_fma(a, b, -p);  // a b - p, exactly
+    } else {
+      const double ta = 134217729.0 * a, tb = 134217729.0 * b;  // 2^27 + 1
+      const double ah = ta - (ta - a), bh = tb - (tb - b);
+      const double al = a - ah, bl = b - bh;
+      e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    }
     e += (a * y.v.x[1] + x.v.x[1] * b);
     const double s = p + e;  // quick_two_sum(p, e)
-    return DD(dd_real(s, e - (s - p)));
+    return DDT(dd_real(s, e - (s - p)));
   }
 };
+using DD = DDT<false>;
+using DDFused = DDT<true>;
+
+// Whether this processor has fused multiply-add (the FMA3 extension), once per process; only
+// x86-64 with GCC or Clang dispatches ([[gnu::target("fma")]]), elsewhere DD alone is used.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define CERTCYL_FUSED_DISPATCH 1
+inline bool has_fused_multiply_add() {
+  static const bool fused = __builtin_cpu_supports("fma");
+  return fused;
+}
+#else
+#define CERTCYL_FUSED_DISPATCH 0
+inline bool has_fused_multiply_add() { return false; }
+#endif
 
 // x - y exactly (the two-difference of two doubles).
 inline DD dd_difference(double x, double y) { return DD(dd_real::sub(x, y)); }
