@@ -19,6 +19,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "fd_io.hpp"
 #include "judge_internal.hpp"
 #include "query.hpp"
 
@@ -138,18 +139,6 @@ class QueryLines {
 
   std::map<study::Query, Template> templates_;
 };
-
-// Writes all of `s` to fd; false when the reader has gone (EPIPE) or on another error.
-bool write_all(int fd, const std::string& s) {
-  std::size_t done = 0;
-  while (done < s.size()) {
-    const ssize_t n = ::write(fd, s.data() + done, s.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    done += static_cast<std::size_t>(n);
-  }
-  return true;
-}
 
 std::string describe_status(int status) {
   if (WIFSIGNALED(status)) {
@@ -280,7 +269,7 @@ Answers run_exec(const std::string& command, const std::vector<Case>& cases, con
       lines.append(batch, cases[i]);
       batch += '\n';
       if ((i + 1) % kBatchLines == 0 || i + 1 == cases.size()) {
-        if (!write_all(fd, batch)) break;
+        if (!write_all(fd, batch.data(), batch.size())) break;
         batch.clear();
       }
     }

@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "certcyl/errors.hpp"
+#include "fd_io.hpp"
 #include "interrupt.hpp"
 
 namespace certcyl::cli {
@@ -316,12 +317,7 @@ void answer_isolated(const std::vector<std::string>& lines, const std::vector<st
         const ojson a = answer_line(lines[j], options, numbers[j]);
         std::string data(1, a.contains("error") ? 'E' : 'A');
         data.append(a.dump(-1, ' ', false, ojson::error_handler_t::replace)).push_back('\n');
-        for (std::size_t done = 0; done < data.size();) {
-          const ssize_t n = write(fds[1], data.data() + done, data.size() - done);
-          if (n < 0 && errno == EINTR) continue;
-          if (n <= 0) _exit(3);
-          done += static_cast<std::size_t>(n);
-        }
+        if (!write_all(fds[1], data.data(), data.size())) _exit(3);
       }
       _exit(0);
     }

@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "fd_io.hpp"
 #include "study/families.hpp"
 #include "study/gap.hpp"
 #include "study_internal.hpp"
@@ -34,11 +35,7 @@ std::string hunt_in_child(const Method& m, const std::function<std::string(const
     close(fds[0]);
     auto send = [&](const std::string& msg) {
       const std::string data = msg + '\n';
-      for (std::size_t done = 0; done < data.size();) {
-        const ssize_t n = write(fds[1], data.data() + done, data.size() - done);
-        if (n <= 0) _exit(3);
-        done += static_cast<std::size_t>(n);
-      }
+      if (!write_all(fds[1], data.data(), data.size())) _exit(3);
     };
     const std::string line = hunt(send);
     send("L " + line);

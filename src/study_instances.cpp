@@ -2,7 +2,9 @@
 // answer, outcome and time (the rows of instances.csv), and the two CSV files they make.
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <mutex>
+#include <tuple>
 
 #include "study/gap.hpp"
 #include "study_internal.hpp"
@@ -12,13 +14,22 @@ using namespace certcyl::study;
 
 namespace {
 
-// ---- Timing ---------------------------------------------------------------------------------
+std::mutex serial_mutex;
+
+// |t - t*| in units of the ulp of max(|t*|, 1): the parameter's own ulp away from 0, and an
+// absolute measure near 0 (where counting representable doubles would make 1e-17 against 0
+// an error of 2^62 "ulps").
+double t_error_ulps(double t, double exact) {
+  const double scale = std::max(std::fabs(exact), 1.0);
+  const double ulp = std::nextafter(scale, std::numeric_limits<double>::infinity()) - scale;
+  return static_cast<double>(std::fabs(static_cast<long double>(t) - static_cast<long double>(exact)) / ulp);
+}
+
+}  // namespace
 
 // Runs a method and measures it: one timed call; calls under 2 us are repeated 16 times and
 // the mean of the repetitions is reported (the clock costs ~20 ns per reading).
-std::mutex serial_mutex;
-
-std::pair<MethodOutput, double> timed(const Method& m, const std::vector<double>& x) {
+std::pair<MethodOutput, double> run_timed(const Method& m, const std::vector<double>& x) {
   using clock = std::chrono::steady_clock;
   std::unique_lock<std::mutex> lock(serial_mutex, std::defer_lock);
   if (m.serial) lock.lock();  // before the clock starts: waiting is not the method's time
@@ -40,18 +51,6 @@ std::pair<MethodOutput, double> timed(const Method& m, const std::vector<double>
   return {out, ns};
 }
 
-
-// |t - t*| in units of the ulp of max(|t*|, 1): the parameter's own ulp away from 0, and an
-// absolute measure near 0 (where counting representable doubles would make 1e-17 against 0
-// an error of 2^62 "ulps").
-double t_error_ulps(double t, double exact) {
-  const double scale = std::max(std::fabs(exact), 1.0);
-  const double ulp = std::nextafter(scale, std::numeric_limits<double>::infinity()) - scale;
-  return static_cast<double>(std::fabs(static_cast<long double>(t) - static_cast<long double>(exact)) / ulp);
-}
-
-}  // namespace
-
 std::string outcome_of(const MethodOutput& m, const Instance& inst) {
   if (inst.certified == Answer::undecided) return "uncertified";
   return std::string(to_string(judge(m, inst.certified)));
@@ -71,17 +70,31 @@ MethodOutput run_quiet(const Method& m, const std::vector<double>& x) {
 
 std::vector<std::vector<Row>> run_instances(const StudyOptions& o, const Registry& registry, std::vector<Planned>& plan) {
   std::vector<std::vector<Row>> rows(plan.size());
-  auto evaluate = [&](Planned& p, const Method& m) {
+  // With `child`, the call runs in that child process as its method `ci` (the serial methods).
+  auto evaluate = [&](Planned& p, const Method& m, ChildRunner* child, std::size_t ci) {
     const Instance& inst = p.inst;
     // The slow types run on a pseudo-random 1/stride of each family (not every stride-th
     // index, which would pick the k = 0 instances: ulp_offset makes every 8th one k = 0).
     if (m.query != inst.query || (mix(0, p.index_in_family) >> 32) % m.stride != 0 || !keep_name(o.methods, m.name())) return;
-    const auto [res, ns] = timed(m, inst.x);
+    MethodOutput res;
+    double ns = 0;
+    std::string ended;
+    if (child != nullptr) {
+      ChildCall c = child->run(ci, inst.x, /*timed=*/true);
+      res = c.out, ns = c.ns;
+      if (c.ended) {
+        ended = c.reason;
+        std::cerr << "certcyl study: " << m.name() << " ended its process on instance " << inst.id << " (" << c.reason
+                  << "): answered process_ended\n";
+      }
+    } else {
+      std::tie(res, ns) = run_timed(m, inst.x);
+    }
     Row r;
     r.family = inst.family, r.query = std::string(to_string(inst.query)), r.instance = inst.id, r.k = p.k;
     r.expected = std::string(to_string(inst.expected));
     r.method = m.name(), r.base = m.base, r.nt = m.nt, r.kind = std::string(to_string(m.kind));
-    r.answer = answer_label(res), r.certified = std::string(to_string(inst.certified)), r.outcome = outcome_of(res, inst);
+    r.answer = ended.empty() ? answer_label(res) : "process_ended", r.certified = std::string(to_string(inst.certified)), r.outcome = outcome_of(res, inst);
     r.gap_lo = inst.gap_lo, r.gap_hi = inst.gap_hi, r.ns = ns;
     if (is_line_query(inst.query) && !res.intersecting && intersects(res.answer) && intersects(inst.certified) &&
         std::isfinite(res.t_in) && std::isfinite(inst.t_in))
@@ -92,10 +105,17 @@ std::vector<std::vector<Row>> run_instances(const StudyOptions& o, const Registr
   parallel_for(plan.size(), o.threads, [&](std::size_t pi) {
     certify(plan[pi].inst);
     for (const Method& m : registry)
-      if (!m.serial) evaluate(plan[pi], m);
+      if (!m.serial) evaluate(plan[pi], m, nullptr, 0);
     progress.tick();
   });
-  // The serial methods, on this thread only (see Method::serial), in registry order per instance.
+  // The serial methods, on this thread only (see Method::serial), in registry order per instance,
+  // each call in a child process (ChildRunner: CORE::Expr ends its process on some inputs; such
+  // a call is answered process_ended, outcome error, and the study goes on).
+  std::vector<const Method*> serial;
+  std::vector<std::size_t> serial_index(registry.size(), 0);
+  for (std::size_t i = 0; i < registry.size(); ++i)
+    if (registry[i].serial) serial_index[i] = serial.size(), serial.push_back(&registry[i]);
+  ChildRunner child(serial);
   Progress serial_progress(o, "instances (serial)", plan.size());
   for (Planned& p : plan) {
     std::vector<Row> parallel_rows = std::move(rows[&p - plan.data()]);
@@ -103,7 +123,7 @@ std::vector<std::vector<Row>> run_instances(const StudyOptions& o, const Registr
     std::size_t next_parallel = 0;
     for (const Method& m : registry) {
       if (m.serial) {
-        evaluate(p, m);
+        evaluate(p, m, &child, serial_index[&m - registry.data()]);
       } else if (m.query == p.inst.query && next_parallel < parallel_rows.size() && parallel_rows[next_parallel].method == m.name()) {
         rows[&p - plan.data()].push_back(std::move(parallel_rows[next_parallel++]));
       }

@@ -3,6 +3,7 @@
 // bar, and each stage's entry point. Internal to the command; the stages, in order:
 //   study_plan.cpp       the configuration (size presets, --config, --shard) and the instances
 //   study_instances.cpp  every method on every instance: timing, outcomes, instances.csv, inputs.csv
+//   study_child.cpp      the serial methods' calls in a child process (CORE::Expr may end it)
 //   study_maps.cpp       the failure maps (failure_maps/)
 //   study_hunt.cpp       the worst-input hunt (hunt.csv)
 //   study_machine.cpp    the build and machine facts (machine.json)
@@ -104,6 +105,38 @@ std::string outcome_of(const study::MethodOutput& m, const study::Instance& inst
 
 // The method's output (error set when it throws); serial methods one at a time.
 study::MethodOutput run_quiet(const study::Method& m, const std::vector<double>& x);
+// The same with its time in nanoseconds: one timed call, repeated 16 times under 2 us.
+std::pair<study::MethodOutput, double> run_timed(const study::Method& m, const std::vector<double>& x);
+
+// One call of a serial method in ChildRunner: the output and time (run_timed; 0 untimed), or
+// `ended` when the call ended the child (`reason`: the exit status or the signal; out.error set).
+// `isolated` is false when no child could be started and the call ran in this process.
+struct ChildCall {
+  study::MethodOutput out;
+  double ns = 0;
+  bool ended = false, isolated = true;
+  std::string reason;
+};
+
+// The serial methods' calls in a child process (study_child.cpp): a call that ends the child
+// (CORE::Expr's exit(1), a signal) is answered `ended`, and the next call starts a new child.
+// Used on the main thread while no other thread runs (the child is forked); writes to a child
+// that ended need SIGPIPE ignored, as the command does (certcyl_main.cpp).
+class ChildRunner {
+ public:
+  explicit ChildRunner(std::vector<const study::Method*> methods);
+  ~ChildRunner();
+  ChildRunner(const ChildRunner&) = delete;
+  ChildRunner& operator=(const ChildRunner&) = delete;
+  // methods[method] on x, timed or not.
+  ChildCall run(std::size_t method, const std::vector<double>& x, bool timed);
+
+ private:
+  bool start();
+  void stop();
+  std::vector<const study::Method*> methods_;
+  int pid_ = -1, to_child_ = -1, from_child_ = -1;
+};
 
 // Certifies every planned instance and runs every applicable method on it; the rows of each
 // instance in registry order.

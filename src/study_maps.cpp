@@ -162,12 +162,23 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
         if (!methods[k]->serial && evaluated(*methods[k], i, j)) codes[cell][k] = answer_code(run_quiet(*methods[k], inst.x));
       progress.tick();
     });
-    // The serial methods, on this thread only (see Method::serial).
-    for (std::size_t k = 0; k < methods.size(); ++k) {
+    // The serial methods, on this thread only (see Method::serial), each call in a child process
+    // (ChildRunner: a call that ends it, as CORE::Expr does on some inputs, is an error, 'e').
+    std::vector<const Method*> serial;
+    for (const Method* m : methods)
+      if (m->serial) serial.push_back(m);
+    ChildRunner child(serial);
+    for (std::size_t k = 0, ci = 0; k < methods.size(); ++k) {
       if (!methods[k]->serial) continue;
       for (std::size_t cell = 0; cell < cells; ++cell)
-        if (evaluated(*methods[k], static_cast<long>(cell) / n, static_cast<long>(cell) % n))
-          codes[cell][k] = answer_code(run_quiet(*methods[k], grid.input(cell)));
+        if (evaluated(*methods[k], static_cast<long>(cell) / n, static_cast<long>(cell) % n)) {
+          const ChildCall c = child.run(ci, grid.input(cell), /*timed=*/false);
+          if (c.ended)
+            std::cerr << "certcyl study: " << methods[k]->name() << " ended its process on map " << grid.name << " cell " << cell << " ("
+                      << c.reason << "): an error ('e')\n";
+          codes[cell][k] = answer_code(c.out);
+        }
+      ++ci;
     }
     std::vector<std::string> names;
     nlohmann::ordered_json strides = nlohmann::ordered_json::object();
