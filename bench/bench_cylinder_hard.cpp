@@ -19,7 +19,9 @@
 //
 // Per family: the time of one query (median of 3 calls on each instance), as mean, median, p99
 // and max over the instances, each also as a ratio to the mean on the random pairs of
-// bench_cylinder_cylinder (measured at start-up in this run); the answers; the stage that
+// bench_cylinder_cylinder measured right before and right after the family's instances (the
+// mean of the two, `random_ns`: this machine's speed drifts by up to 1.7x between minutes, so a
+// mean taken once at start-up, `BM_random_pairs`, is not side by side); the answers; the stage that
 // decided most instances; and FCL's agreement with the certified answer (a collision reported
 // for touching and overlapping pairs). The exit status is 1 when an answer contradicts the
 // construction or is undecided. BM_hard_refine_off repeats the 2^-60 families with the
@@ -247,29 +249,31 @@ double call_ns(F f) {
 }
 
 // The mean time of the query on the random pairs of bench_cylinder_cylinder (4,000 pairs, the
-// default options, binary64 input), measured once, before any family.
+// default options, binary64 input): the best of 5 passes, measured now.
 double random_mean_ns() {
-  static const double mean = [] {
+  static const std::vector<std::pair<Cylinder<double>, Cylinder<double>>> ps = [] {
     std::mt19937_64 g(20240611);
-    std::vector<std::pair<Cylinder<double>, Cylinder<double>>> ps;
+    std::vector<std::pair<Cylinder<double>, Cylinder<double>>> v;
     for (int i = 0; i < 4000; ++i) {
       const Cylinder<double> a = random_cylinder(g);
-      ps.emplace_back(a, random_cylinder(g));
+      v.emplace_back(a, random_cylinder(g));
     }
-    double best = INFINITY;
-    for (int rep = 0; rep < 5; ++rep) {
-      const auto s = std::chrono::steady_clock::now();
-      for (const auto& [a, b] : ps) benchmark::DoNotOptimize(certcyl::certified_cylinder_cylinder(a, b).answer);
-      best = std::min(best, std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - s).count() / static_cast<double>(ps.size()));
-    }
-    return best;
+    return v;
   }();
-  return mean;
+  double best = INFINITY;
+  for (int rep = 0; rep < 5; ++rep) {
+    const auto s = std::chrono::steady_clock::now();
+    for (const auto& [a, b] : ps) benchmark::DoNotOptimize(certcyl::certified_cylinder_cylinder(a, b).answer);
+    best = std::min(best, std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - s).count() / static_cast<double>(ps.size()));
+  }
+  return best;
 }
 
+// The random-pair mean once, at start-up (the families' ratios use their own, run_family).
 void BM_random_pairs(benchmark::State& state) {
-  for (auto _ : state) benchmark::DoNotOptimize(random_mean_ns());
-  state.counters["mean_ns"] = random_mean_ns();
+  double mean = 0;
+  for (auto _ : state) mean = random_mean_ns();
+  state.counters["mean_ns"] = mean;
 }
 
 void run_family(benchmark::State& state, const Family& f, bool refine) {
@@ -280,6 +284,7 @@ void run_family(benchmark::State& state, const Family& f, bool refine) {
     benchmark::DoNotOptimize(query(f.pairs[i], o).answer);
     if (++i == f.pairs.size()) i = 0;
   }
+  const double random_before = random_mean_ns();
   std::vector<double> t;
   std::map<std::string, int> stages;
   std::array<int, 4> answers{};
@@ -304,7 +309,7 @@ void run_family(benchmark::State& state, const Family& f, bool refine) {
   double mean = 0;
   for (double x : t) mean += x;
   mean /= static_cast<double>(t.size());
-  const double random = random_mean_ns();
+  const double random = (random_before + random_mean_ns()) / 2;
   const auto at = [&t](double q) { return t[std::min(t.size() - 1, static_cast<std::size_t>(std::ceil(q * static_cast<double>(t.size())) - 1))]; };
   state.counters["mean_us"] = mean / 1e3;
   state.counters["p50_us"] = at(0.5) / 1e3;
@@ -312,6 +317,7 @@ void run_family(benchmark::State& state, const Family& f, bool refine) {
   state.counters["max_us"] = t.back() / 1e3;
   state.counters["x_mean"] = mean / random;
   state.counters["x_p99"] = at(0.99) / random;
+  state.counters["random_ns"] = random;
   state.counters["separated"] = answers[static_cast<std::size_t>(certcyl::Answer::separated)];
   state.counters["touching"] = answers[static_cast<std::size_t>(certcyl::Answer::touching)];
   state.counters["overlapping"] = answers[static_cast<std::size_t>(certcyl::Answer::overlapping)];
