@@ -6,12 +6,14 @@
 // and receives the output. A call that ends the child is answered `ended` (with the exit status
 // or the signal; its time is the time until the child ended), and the next call forks a new
 // child.
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstdint>
 #include <cstring>
 #include <iostream>
+#include <stdexcept>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -98,14 +100,17 @@ bool ChildRunner::start() {
   return true;
 }
 
-ChildCall ChildRunner::run(std::size_t method, const std::vector<double>& x, bool timed) {
+ChildCall ChildRunner::run(const Method& m, const std::vector<double>& x, bool timed) {
+  const auto it = std::find(methods_.begin(), methods_.end(), &m);
+  if (it == methods_.end()) throw std::logic_error("ChildRunner: " + m.name() + " is not one of its methods");
+  const std::size_t method = static_cast<std::size_t>(it - methods_.begin());
   ChildCall call;
   if (pid_ <= 0 && !start()) {  // no child to be had (no process or pipe left): in this process
     call.isolated = false;
     if (timed) {
-      std::tie(call.out, call.ns) = run_timed(*methods_.at(method), x);
+      std::tie(call.out, call.ns) = run_timed(m, x);
     } else {
-      call.out = run_quiet(*methods_.at(method), x);
+      call.out = run_quiet(m, x);
     }
     return call;
   }

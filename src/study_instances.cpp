@@ -70,23 +70,21 @@ MethodOutput run_quiet(const Method& m, const std::vector<double>& x) {
 
 std::vector<std::vector<Row>> run_instances(const StudyOptions& o, const Registry& registry, std::vector<Planned>& plan) {
   std::vector<std::vector<Row>> rows(plan.size());
-  // With `child`, the call runs in that child process as its method `ci` (the serial methods).
-  auto evaluate = [&](Planned& p, const Method& m, ChildRunner* child, std::size_t ci) {
+  // With `child`, the call runs in that child process (the serial methods).
+  auto evaluate = [&](Planned& p, const Method& m, ChildRunner* child) {
     const Instance& inst = p.inst;
     // The slow types run on a pseudo-random 1/stride of each family (not every stride-th
     // index, which would pick the k = 0 instances: ulp_offset makes every 8th one k = 0).
     if (m.query != inst.query || (mix(0, p.index_in_family) >> 32) % m.stride != 0 || !keep_name(o.methods, m.name())) return;
     MethodOutput res;
     double ns = 0;
-    std::string ended;
+    bool ended = false;
     if (child != nullptr) {
-      ChildCall c = child->run(ci, inst.x, /*timed=*/true);
-      res = c.out, ns = c.ns;
-      if (c.ended) {
-        ended = c.reason;
+      const ChildCall c = child->run(m, inst.x, /*timed=*/true);
+      res = c.out, ns = c.ns, ended = c.ended;
+      if (c.ended)
         std::cerr << "certcyl study: " << m.name() << " ended its process on instance " << inst.id << " (" << c.reason
                   << "): answered process_ended\n";
-      }
     } else {
       std::tie(res, ns) = run_timed(m, inst.x);
     }
@@ -94,7 +92,7 @@ std::vector<std::vector<Row>> run_instances(const StudyOptions& o, const Registr
     r.family = inst.family, r.query = std::string(to_string(inst.query)), r.instance = inst.id, r.k = p.k;
     r.expected = std::string(to_string(inst.expected));
     r.method = m.name(), r.base = m.base, r.nt = m.nt, r.kind = std::string(to_string(m.kind));
-    r.answer = ended.empty() ? answer_label(res) : "process_ended", r.certified = std::string(to_string(inst.certified)), r.outcome = outcome_of(res, inst);
+    r.answer = ended ? "process_ended" : answer_label(res), r.certified = std::string(to_string(inst.certified)), r.outcome = outcome_of(res, inst);
     r.gap_lo = inst.gap_lo, r.gap_hi = inst.gap_hi, r.ns = ns;
     if (is_line_query(inst.query) && !res.intersecting && intersects(res.answer) && intersects(inst.certified) &&
         std::isfinite(res.t_in) && std::isfinite(inst.t_in))
@@ -105,16 +103,15 @@ std::vector<std::vector<Row>> run_instances(const StudyOptions& o, const Registr
   parallel_for(plan.size(), o.threads, [&](std::size_t pi) {
     certify(plan[pi].inst);
     for (const Method& m : registry)
-      if (!m.serial) evaluate(plan[pi], m, nullptr, 0);
+      if (!m.serial) evaluate(plan[pi], m, nullptr);
     progress.tick();
   });
   // The serial methods, on this thread only (see Method::serial), in registry order per instance,
   // each call in a child process (ChildRunner: CORE::Expr ends its process on some inputs; such
   // a call is answered process_ended, outcome error, and the study goes on).
   std::vector<const Method*> serial;
-  std::vector<std::size_t> serial_index(registry.size(), 0);
-  for (std::size_t i = 0; i < registry.size(); ++i)
-    if (registry[i].serial) serial_index[i] = serial.size(), serial.push_back(&registry[i]);
+  for (const Method& m : registry)
+    if (m.serial) serial.push_back(&m);
   ChildRunner child(serial);
   Progress serial_progress(o, "instances (serial)", plan.size());
   for (Planned& p : plan) {
@@ -123,7 +120,7 @@ std::vector<std::vector<Row>> run_instances(const StudyOptions& o, const Registr
     std::size_t next_parallel = 0;
     for (const Method& m : registry) {
       if (m.serial) {
-        evaluate(p, m, &child, serial_index[&m - registry.data()]);
+        evaluate(p, m, &child);
       } else if (m.query == p.inst.query && next_parallel < parallel_rows.size() && parallel_rows[next_parallel].method == m.name()) {
         rows[&p - plan.data()].push_back(std::move(parallel_rows[next_parallel++]));
       }

@@ -128,8 +128,8 @@ class ChildRunner {
   ~ChildRunner();
   ChildRunner(const ChildRunner&) = delete;
   ChildRunner& operator=(const ChildRunner&) = delete;
-  // methods[method] on x, timed or not.
-  ChildCall run(std::size_t method, const std::vector<double>& x, bool timed);
+  // m (one of the methods given) on x, timed or not.
+  ChildCall run(const study::Method& m, const std::vector<double>& x, bool timed);
 
  private:
   bool start();

@@ -168,17 +168,16 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
     for (const Method* m : methods)
       if (m->serial) serial.push_back(m);
     ChildRunner child(serial);
-    for (std::size_t k = 0, ci = 0; k < methods.size(); ++k) {
+    for (std::size_t k = 0; k < methods.size(); ++k) {
       if (!methods[k]->serial) continue;
       for (std::size_t cell = 0; cell < cells; ++cell)
         if (evaluated(*methods[k], static_cast<long>(cell) / n, static_cast<long>(cell) % n)) {
-          const ChildCall c = child.run(ci, grid.input(cell), /*timed=*/false);
+          const ChildCall c = child.run(*methods[k], grid.input(cell), /*timed=*/false);
           if (c.ended)
             std::cerr << "certcyl study: " << methods[k]->name() << " ended its process on map " << grid.name << " cell " << cell << " ("
                       << c.reason << "): an error ('e')\n";
           codes[cell][k] = answer_code(c.out);
         }
-      ++ci;
     }
     std::vector<std::string> names;
     nlohmann::ordered_json strides = nlohmann::ordered_json::object();

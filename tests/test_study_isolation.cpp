@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -55,28 +56,30 @@ BOOST_AUTO_TEST_CASE(a_call_that_ends_the_child_is_answered_and_the_next_runs_in
   ChildRunner child({&a, &b});
   const pid_t self = ::getpid();
   for (double v : {1.0, 2.0}) {
-    const ChildCall c = child.run(0, {v}, /*timed=*/true);
+    const ChildCall c = child.run(a, {v}, /*timed=*/true);
     BOOST_TEST(!c.ended);
     BOOST_TEST(c.isolated);
     BOOST_TEST(to_string(c.out.answer) == "overlapping");
     BOOST_TEST(c.out.t_in == v);
     BOOST_TEST(c.ns > 0);
   }
-  const ChildCall exited = child.run(0, {13.0}, true);
+  const ChildCall exited = child.run(a, {13.0}, true);
   BOOST_TEST(exited.ended);
   BOOST_TEST(exited.out.error);
   BOOST_TEST(exited.reason == "exit status 1");
   BOOST_TEST(answer_code(exited.out) == 'e');
-  const ChildCall next = child.run(1, {13.0}, false);  // the other method, in a new child
+  const ChildCall next = child.run(b, {13.0}, false);  // the other method, in a new child
   BOOST_TEST(!next.ended);
   BOOST_TEST(next.out.t_in == 13.0);
-  const ChildCall signalled = child.run(0, {14.0}, false);
+  const ChildCall signalled = child.run(a, {14.0}, false);
   BOOST_TEST(signalled.ended);
   BOOST_TEST(signalled.reason.rfind("signal " + std::to_string(SIGFPE) + " (", 0) == 0, signalled.reason);
-  const ChildCall after = child.run(0, {3.0}, false);
+  const ChildCall after = child.run(a, {3.0}, false);
   BOOST_TEST(!after.ended);
   BOOST_TEST(after.out.t_in == 3.0);
   BOOST_TEST(::getpid() == self);  // this process is still the one running
+  const Method other = ending_method("other", -1, -1);
+  BOOST_CHECK_THROW(child.run(other, {1.0}, false), std::logic_error);  // not one of its methods
 }
 
 // The instances stage: a serial method that ends its process on two inputs of a tiny study's
