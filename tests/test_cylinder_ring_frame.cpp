@@ -122,6 +122,17 @@ void check_frame(const Pair& p, const RingFrame& f) {
               to_q(f.pair.c1.p1.y) == s * p.b.p1.y));
   BOOST_TEST((f.to_input(f.pair.c1.p0.x, M(1)) == p.b.p0.x));
   BOOST_TEST((f.to_input(M(3) * f.pair.c0.p1.y, M(3)) == p.a.p1.y));
+  // Any dyadic n and w != 0, either sign: n / (w s), in lowest terms (== compares canonical Gmpq).
+  for (const M& w : {M(1), M(3), M(-5), M(0.375), M(std::ldexp(-3.0, -70)), M(std::ldexp(7.0, 80))})
+    for (const M& n : {f.pair.c0.p0.x, f.pair.c1.p1.z + M(0.25), M(0), M(-std::ldexp(1.0, -200))}) {
+      const Q expected = to_q(n) / (to_q(w) * s);
+      const Q got = f.to_input(n, w);
+      BOOST_TEST((got == expected));
+      BOOST_TEST(mpz_sgn(mpq_denref(got.mpq())) > 0);
+      CGAL::Gmpz g;
+      mpz_gcd(g.mpz(), mpq_numref(got.mpq()), mpq_denref(got.mpq()));
+      BOOST_TEST((g == 1));
+    }
 }
 
 }  // namespace
@@ -258,4 +269,83 @@ BOOST_AUTO_TEST_CASE(reconstruction_agrees_with_gmpq) {
       BOOST_TEST_CONTEXT(x << " tolerance " << tol) { BOOST_TEST((certcyl::detail::simplest_convergent(x, tol) == convergent_reference(x, tol))); }
     }
   }
+  // reconstruct_direction (unreduced quotients over the coordinate largest in magnitude, the
+  // first one on ties) against its definition in Gmpq, on directions near integer ones given as
+  // dyadic numbers (as the refine stage's double-double directions are), with ties and zeros.
+  std::uniform_int_distribution<long> small(-40, 40);
+  for (int i = 0; i < 3000; ++i) {
+    Vec3<Q> D{Q(small(g)), Q(small(g)), Q(small(g))};
+    if (i % 5 == 0) D.y = i % 2 ? D.x : Q(-D.x);  // a tie in magnitude
+    if (D == Vec3<Q>{0, 0, 0}) continue;
+    const Q s = Q(den(g)) / Q(CGAL::Gmpz(1) << (i % 60));
+    for (std::size_t j = 0; j < 3; ++j)
+      if (D[j] != 0 && i % 4 != 1) D[j] = s * D[j] + Q(num(g) % 9) * tiny;
+    for (const Q& tol : {Q(1) / Q(CGAL::Gmpz(1) << 50), Q(1) / Q(CGAL::Gmpz(1) << 20)}) {
+      std::size_t k = 0;
+      for (std::size_t j = 1; j < 3; ++j)
+        if (CGAL::abs(D[j]) > CGAL::abs(D[k])) k = j;
+      Vec3<Q> expected;
+      for (std::size_t j = 0; j < 3; ++j) expected[j] = j == k ? Q(1) : convergent_reference(D[j] / D[k], tol);
+      BOOST_TEST_CONTEXT(D.x << " " << D.y << " " << D.z << " tolerance " << tol) { BOOST_TEST((certcyl::detail::reconstruct_direction(D, tol) == expected)); }
+    }
+  }
+}
+
+// The span in binades read off a binary64 pair's world frame in Mpzf (the solver's
+// input_span_bits for such input) equals the span of the same pair in Gmpq, on random pairs
+// over the whole exponent range and on pairs built so that an axis or T is just below or above
+// a power of two, or cancels to a few ulps, or is subnormal in the world frame (where CGAL's
+// double enclosure of an Mpzf widens to 0 and the binade is read in Gmpq).
+BOOST_AUTO_TEST_CASE(span_from_the_world_frame_equals_span_in_gmpq) {
+  using certcyl::detail::cylinder_pair_span_bits;
+  std::mt19937_64 g(20261127);
+  std::uniform_int_distribution<int> exponent(-1074, 1023);
+  std::uniform_real_distribution<double> unit(1, 2);
+  std::bernoulli_distribution coin(0.5);
+  const auto number = [&](int span_lo, int span_hi) {
+    const double x = std::ldexp(unit(g), std::uniform_int_distribution<int>(span_lo, span_hi)(g));
+    return coin(g) ? -x : x;
+  };
+  long compared = 0;
+  const auto check = [&](const Cylinder<double>& a, const Cylinder<double>& b) {
+    double m = 0;
+    for (const Cylinder<double>* c : {&a, &b})
+      for (double x : {c->p0.x, c->p0.y, c->p0.z, c->p1.x, c->p1.y, c->p1.z, c->radius}) m = std::max(m, std::abs(x));
+    int e = 0;
+    std::frexp(m, &e);
+    bool exact = true;  // the solver uses the world frame only when the scaling is exact
+    const auto s = [&](double x) {
+      const double y = std::ldexp(x, 1 - e);
+      exact = exact && std::ldexp(y, e - 1) == x;
+      return y;
+    };
+    const RingFrame f = RingFrame::from_world(a.map(s), b.map(s), 1 - e);
+    if (!exact) return;
+    const auto q = [](double x) { return Q(x); };
+    ++compared;
+    BOOST_TEST(cylinder_pair_span_bits(f.pair) == cylinder_pair_span_bits(CylinderPair<Q>::make(a.map(q), b.map(q))));
+  };
+  for (int i = 0; i < 4000; ++i) {
+    // Every number in one random window of 60 to 2,000 binades.
+    const int lo = exponent(g), width = std::uniform_int_distribution<int>(60, 2000)(g), hi = std::min(1023, lo + width);
+    const auto n = [&] { return number(lo, hi); };
+    const Cylinder<double> a{{n(), n(), n()}, {n(), n(), n()}, std::abs(n())}, b{{n(), n(), n()}, {n(), n(), n()}, std::abs(n())};
+    check(a, b);
+  }
+  BOOST_TEST(compared > 3000);
+  for (int k = -1000; k <= 1000; k += 37) {
+    const double p = std::ldexp(1.0, k);
+    for (int j : {1, 30, 52, 53, 54, 60, 200}) {
+      const double t = std::ldexp(1.0, k - j);
+      // An axis of 2^k - 2^(k-j) or 2^k + 2^(k-j), and T of a few ulps after cancelling.
+      const Cylinder<double> a{{t, 0, 1}, {p, 0, 1}, 1}, b{{-t, 3, 1}, {p, 5, 1}, 0.5};
+      const Cylinder<double> c{{-t, 0, p}, {p, 1, p}, p}, d{{t, 0, -p}, {-p, -1, std::nextafter(-p, 0.0)}, p};
+      const Cylinder<double> all_ones{{0, 0, 0}, {std::nextafter(2 * p, 0.0), 0, 0}, p};
+      check(a, b);
+      check(c, d);
+      check(b, c);
+      check(all_ones, a);
+    }
+  }
+  BOOST_TEST(compared > 3500);
 }

@@ -103,6 +103,23 @@ BOOST_AUTO_TEST_CASE(enclosure_is_tight) {
   const auto [e, f] = enclose(parse_rational("1e400"));
   BOOST_TEST(e == DBL_MAX);
   BOOST_TEST(std::isinf(f));
+  // The upper end is rounded up independently (round_rational with MPFR_RNDU): the same double,
+  // over the range's edges, subnormals, zero and random rationals of every size.
+  std::vector<Rational> qs = {parse_rational("-1e400"), parse_rational("1e-400"), parse_rational("-1e-400"), Rational(0),
+                              Rational(DBL_MAX), Rational(-DBL_MAX), Rational(0x1p-1074), Rational(0x1p-1074) / 3,
+                              Rational(-0x1p-1074) / 3, Rational(DBL_MIN) - Rational(0x1p-1074) / 7, Rational(1) - pow2(-200),
+                              Rational(DBL_MAX) + pow2(969), -(Rational(DBL_MAX) + pow2(969))};
+  std::mt19937_64 g(20261127);
+  std::uniform_int_distribution<int> shift(-1200, 1200);
+  for (int i = 0; i < 2000; ++i) {
+    const Rational n(static_cast<long>(g() >> 1) - (1L << 62)), d(static_cast<long>(g() >> 2) + 1);
+    qs.push_back(n / d * pow2(shift(g)));
+  }
+  for (const Rational& q : qs) {
+    const auto [l, h] = enclose(q);
+    BOOST_TEST(l == certcyl::detail::round_rational<double>(q, MPFR_RNDD));
+    BOOST_TEST(h == certcyl::detail::round_rational<double>(q, MPFR_RNDU));
+  }
 }
 
 BOOST_AUTO_TEST_CASE(every_binary64_prints_and_parses_back_exactly) {

@@ -61,9 +61,10 @@ class MpfrExponentRange {
   mpfr_exp_t old_min_, old_max_;
 };
 
-// Rounds q into floating type F with the given MPFR rounding mode, honouring F's range.
+// Rounds q into floating type F with the given MPFR rounding mode, honouring F's range; sets
+// *inexact (when given) to whether the result differs from q.
 template <class F>
-F round_rational(const Rational& q, mpfr_rnd_t rnd) {
+F round_rational(const Rational& q, mpfr_rnd_t rnd, bool* inexact = nullptr) {
   static_assert(std::numeric_limits<F>::is_iec559 || std::numeric_limits<F>::radix == 2,
                 "round_rational needs a binary floating type");
   using L = std::numeric_limits<F>;
@@ -75,7 +76,8 @@ F round_rational(const Rational& q, mpfr_rnd_t rnd) {
     // max_exponent] in MPFR's convention (for binary64: [-1073, 1024]).
     MpfrExponentRange range(L::min_exponent - L::digits + 1, L::max_exponent);
     int ternary = mpfr_set_q(x, q.mpq(), rnd);
-    mpfr_subnormalize(x, ternary, rnd);
+    ternary = mpfr_subnormalize(x, ternary, rnd);
+    if (inexact) *inexact = ternary != 0;
     // x is now representable in F, so the conversion below is exact.
     if constexpr (std::is_same_v<F, float>) {
       result = mpfr_get_flt(x, rnd);
@@ -196,8 +198,12 @@ F round_to_nearest(const Rational& q) {
 }
 
 // Tightest binary64 interval containing q: lo <= q <= hi, lo == hi exactly when q is binary64.
+// One rounding: q rounded down, and when that is inexact, the next double up (q rounded up: q
+// lies strictly between two consecutive doubles, or -inf and -DBL_MAX, or DBL_MAX and +inf).
 inline std::pair<double, double> enclose(const Rational& q) {
-  return {detail::round_rational<double>(q, MPFR_RNDD), detail::round_rational<double>(q, MPFR_RNDU)};
+  bool inexact = false;
+  const double lo = detail::round_rational<double>(q, MPFR_RNDD, &inexact);
+  return {lo, inexact ? std::nextafter(lo, std::numeric_limits<double>::infinity()) : lo};
 }
 
 // True when q is exactly a finite binary64 value.

@@ -113,6 +113,7 @@
 #pragma once
 
 #include <CGAL/Gmpfr.h>
+#include <CGAL/Mpzf.h>
 
 #include <algorithm>
 #include <array>
@@ -123,6 +124,7 @@
 #include <limits>
 #include <optional>
 #include <string_view>
+#include <utility>
 
 #include "certcyl/answer.hpp"
 #include "certcyl/certified/detail/cylinder_active_set.hpp"
@@ -380,6 +382,32 @@ inline long cylinder_pair_span_bits(const CylinderPair<Rational>& e) {
       if (mpq_sgn(q->mpq()) != 0) hi = std::max(hi, binade(*q));
   for (const Rational* q : {&e.c0.radius, &e.c1.radius, &e.A0.x, &e.A0.y, &e.A0.z, &e.A1.x, &e.A1.y, &e.A1.z, &e.T.x, &e.T.y, &e.T.z})
     if (mpq_sgn(q->mpq()) != 0) lo = std::min(lo, binade(*q));
+  return std::max(0L, hi - lo + 2);
+}
+
+// floor(log2 |x|) of a dyadic x != 0, exactly: from CGAL's enclosure of x between two doubles
+// when both ends lie in one binade (then x does too), else (x just below a power of two, or
+// below the normal range, where the enclosure widens to 0) from x in Gmpq.
+inline long binade(const CGAL::Mpzf& x) {
+  const std::pair<double, double> b = CGAL::to_interval(x);
+  const double lo = std::min(std::abs(b.first), std::abs(b.second)), hi = std::max(std::abs(b.first), std::abs(b.second));
+  if (lo >= std::numeric_limits<double>::min() && std::isfinite(hi) && (b.first < 0) == (b.second < 0)) {
+    const int e = std::ilogb(lo);
+    if (e == std::ilogb(hi)) return e;
+  }
+  return binade(Rational(static_cast<CGAL::Gmpq>(x)));
+}
+
+// cylinder_pair_span_bits of an exact dyadic pair in Mpzf: the same number as for the pair in
+// Gmpq, and as for the pair times any power of two (the binades of dyadic numbers are exact, and
+// the scaling moves them all alike).
+inline long cylinder_pair_span_bits(const CylinderPair<CGAL::Mpzf>& e) {
+  long hi = std::numeric_limits<long>::min(), lo = std::numeric_limits<long>::max();
+  for (const Cylinder<CGAL::Mpzf>* c : {&e.c0, &e.c1})
+    for (const CGAL::Mpzf* q : {&c->p0.x, &c->p0.y, &c->p0.z, &c->p1.x, &c->p1.y, &c->p1.z, &c->radius})
+      if (CGAL::sign(*q) != CGAL::ZERO) hi = std::max(hi, binade(*q));
+  for (const CGAL::Mpzf* q : {&e.c0.radius, &e.c1.radius, &e.A0.x, &e.A0.y, &e.A0.z, &e.A1.x, &e.A1.y, &e.A1.z, &e.T.x, &e.T.y, &e.T.z})
+    if (CGAL::sign(*q) != CGAL::ZERO) lo = std::min(lo, binade(*q));
   return std::max(0L, hi - lo + 2);
 }
 
@@ -1275,7 +1303,15 @@ class CylinderCylinderSolver {
   }
 
   // ---- stage gmpfr --------------------------------------------------------------------------------------
-  long input_span_bits() { return cylinder_pair_span_bits(exact()); }
+  // Binary64 input with an exact world frame reads it off the ring frame's Mpzf pair (the world
+  // frame exactly, built for the touching proofs anyway), without building the Gmpq pair; the
+  // same number (binades are those of the world frame, a power-of-two scaling of the input).
+  long input_span_bits() {
+    if (!span_bits_) {
+      span_bits_ = binary64_ && world_exact_ && ring() ? cylinder_pair_span_bits(ring()->pair) : cylinder_pair_span_bits(exact());
+    }
+    return *span_bits_;
+  }
 
   // Exact candidates, before any Gmpfr round: the midpoints m0, m1 as witnesses (each is interior
   // to its own cylinder; in double they may be rounded off a needle's axis), and the directions
@@ -1914,7 +1950,7 @@ class CylinderCylinderSolver {
   CylinderPair<double> dbl_;  // world frame (nearest values when not binary64_)
   std::optional<CylinderPair<Interval>> iv_;
   std::optional<CylinderPair<Rational>> ex_;
-  std::optional<CylinderPair<CGAL::Mpzf>> mpzf_;
+  std::optional<long> span_bits_;  // input_span_bits()
   std::optional<IntegerPair> integer_;  // the input scaled to integers (ellipsoid stage)
   std::optional<Vec3<Rational>> gmpfr_direction_;  // the last Gmpfr round's direction and point
   std::optional<Point3<Rational>> gmpfr_point_;

@@ -87,12 +87,22 @@ struct RingFrame {
     return y;
   }
 
-  // The ring point n / w (w > 0) in the input frame: n / (w L 2^e), exactly.
+  // The ring point n / w (w != 0) in the input frame: n / (w L 2^e), exactly. With the dyadic
+  // n = a / 2^i and w = b / 2^j: (a 2^j) / (b L 2^(i + e)), put in lowest terms once.
   Rational to_input(const CGAL::Mpzf& n, const CGAL::Mpzf& w) const {
-    Rational q = Rational(static_cast<CGAL::Gmpq>(n)) / (Rational(static_cast<CGAL::Gmpq>(w)) * Rational(L));
+    const CGAL::Gmpq a = static_cast<CGAL::Gmpq>(n), b = static_cast<CGAL::Gmpq>(w);
     Rational y;
-    if (e >= 0) mpq_div_2exp(y.mpq(), q.mpq(), static_cast<mp_bitcnt_t>(e));
-    if (e < 0) mpq_mul_2exp(y.mpq(), q.mpq(), static_cast<mp_bitcnt_t>(-e));
+    mpz_ptr num = mpq_numref(y.mpq()), den = mpq_denref(y.mpq());
+    mpz_mul(num, mpq_numref(a.mpq()), mpq_denref(b.mpq()));
+    mpz_mul(den, mpq_numref(b.mpq()), mpq_denref(a.mpq()));
+    if (L != 1) mpz_mul(den, den, L.mpz());
+    if (e >= 0) mpz_mul_2exp(den, den, static_cast<mp_bitcnt_t>(e));
+    if (e < 0) mpz_mul_2exp(num, num, static_cast<mp_bitcnt_t>(-e));
+    if (mpz_sgn(den) < 0) {
+      mpz_neg(num, num);
+      mpz_neg(den, den);
+    }
+    mpq_canonicalize(y.mpq());
     return y;
   }
 };

@@ -255,12 +255,13 @@ inline std::optional<RingContact> prove_touching_ring(const CylinderPair<CGAL::M
   return RingContact{f0.feature, f1.feature, D, X};
 }
 
-// Continued-fraction reconstruction: the first convergent p/q of x with |x - p/q| <= tolerance
-// (tolerance >= 0). In integers: with x = n0 / d0 and the remainders (n, d) of Euclid's
-// algorithm, each partial quotient a = floor(n / d) extends the convergents h / k, and the test
-// is |n0 k - h d0| tol_den <= tol_num d0 k (k > 0), without a gcd.
-inline Rational simplest_convergent(const Rational& x, const Rational& tolerance) {
-  mpz_srcptr n0 = mpq_numref(x.mpq()), d0 = mpq_denref(x.mpq());
+// Continued-fraction reconstruction: the first convergent p/q of x = n0 / d0 (d0 > 0, the
+// fraction need not be in lowest terms: Euclid's algorithm on (n0, d0) gives the same partial
+// quotients as on the reduced fraction) with |x - p/q| <= tolerance (tolerance >= 0). In
+// integers: with the remainders (n, d) of Euclid's algorithm, each partial quotient
+// a = floor(n / d) extends the convergents h / k, and the test is
+// |n0 k - h d0| tol_den <= tol_num d0 k (k > 0), homogeneous in (n0, d0), without a gcd.
+inline Rational simplest_convergent(mpz_srcptr n0, mpz_srcptr d0, const Rational& tolerance) {
   mpz_srcptr tn = mpq_numref(tolerance.mpq()), td = mpq_denref(tolerance.mpq());
   CGAL::Gmpz n(n0), d(d0), a, r, h, k, h_prev(1), h_prev2(0), k_prev(0), k_prev2(1), lhs, rhs;
   for (int i = 0; i < 400; ++i) {
@@ -283,18 +284,40 @@ inline Rational simplest_convergent(const Rational& x, const Rational& tolerance
     mpz_swap(k_prev2.mpz(), k_prev.mpz());
     mpz_swap(k_prev.mpz(), k.mpz());
   }
-  return x;
+  return Rational(CGAL::Gmpz(n0), CGAL::Gmpz(d0));
+}
+
+inline Rational simplest_convergent(const Rational& x, const Rational& tolerance) {
+  return simplest_convergent(mpq_numref(x.mpq()), mpq_denref(x.mpq()), tolerance);
 }
 
 // A rational direction with small numbers near D: each coordinate divided by the largest one
-// in magnitude, then reconstructed within the tolerance.
+// in magnitude, then reconstructed within the tolerance. The quotients D[i] / D[k] are passed
+// as the products num_i den_k / (den_i num_k), not reduced (simplest_convergent needs no gcd).
 inline Vec3<Rational> reconstruct_direction(const Vec3<Rational>& D, const Rational& tolerance) {
   std::size_t k = 0;
-  auto mag = [](const Rational& x) { return x < 0 ? Rational(-x) : x; };
-  for (std::size_t i = 1; i < 3; ++i)
-    if (mag(D[i]) > mag(D[k])) k = i;
+  CGAL::Gmpz n, d;
+  for (std::size_t i = 1; i < 3; ++i) {
+    // |D[i]| > |D[k]|, cross-multiplied (denominators are positive).
+    mpz_mul(n.mpz(), mpq_numref(D[i].mpq()), mpq_denref(D[k].mpq()));
+    mpz_mul(d.mpz(), mpq_numref(D[k].mpq()), mpq_denref(D[i].mpq()));
+    if (mpz_cmpabs(n.mpz(), d.mpz()) > 0) k = i;
+  }
   Vec3<Rational> R;
-  for (std::size_t i = 0; i < 3; ++i) R[i] = i == k ? Rational(1) : simplest_convergent(D[i] / D[k], tolerance);
+  mpz_srcptr nk = mpq_numref(D[k].mpq()), dk = mpq_denref(D[k].mpq());
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (i == k) {
+      R[i] = Rational(1);
+      continue;
+    }
+    mpz_mul(n.mpz(), mpq_numref(D[i].mpq()), dk);
+    mpz_mul(d.mpz(), mpq_denref(D[i].mpq()), nk);
+    if (mpz_sgn(d.mpz()) < 0) {
+      mpz_neg(n.mpz(), n.mpz());
+      mpz_neg(d.mpz(), d.mpz());
+    }
+    R[i] = simplest_convergent(n.mpz(), d.mpz(), tolerance);
+  }
   return R;
 }
 
