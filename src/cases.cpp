@@ -102,6 +102,10 @@ Case parse_case(const std::string& text) {
   } else {
     throw std::runtime_error("meta.gap: expected [lo, hi] or null");
   }
+  if (meta.contains("t_in")) {
+    if (!meta["t_in"].is_number()) throw std::runtime_error("meta.t_in: expected a JSON number");
+    c.t_in = meta["t_in"].get<double>();
+  }
   if (meta.contains("map")) {
     const nlohmann::json& m = meta["map"];
     const auto integer = [&m](const char* key, long long lo, long long hi) {
@@ -168,7 +172,7 @@ std::vector<Case> make_cases(const CaseSpec& spec) {
     Case c;
     c.id = spec.query + "/" + p.inst.family + "/" + std::to_string(p.index_in_family);
     c.query = q, c.family = p.inst.family, c.k = p.k;
-    c.certified = p.inst.certified, c.gap_lo = p.inst.gap_lo, c.gap_hi = p.inst.gap_hi;
+    c.certified = p.inst.certified, c.gap_lo = p.inst.gap_lo, c.gap_hi = p.inst.gap_hi, c.t_in = p.inst.t_in;
     c.x = p.inst.x;
     c.line = cases.size() + 1;
     cases.push_back(std::move(c));
@@ -186,6 +190,7 @@ ojson query_line(const Case& c) {
 ojson case_line(const Case& c) {
   ojson line = query_line(c);
   line["meta"] = ojson{{"family", c.family}, {"k", c.k}, {"certified", std::string(to_string(c.certified))}, {"gap", gap_json(c)}};
+  if (std::isfinite(c.t_in)) line["meta"]["t_in"] = c.t_in;
   if (c.map) line["meta"]["map"] = ojson{{"cells", c.map->cells}, {"step", c.map->step}, {"seed", c.map->seed}};
   return line;
 }
@@ -207,6 +212,20 @@ std::vector<Case> read_cases(std::istream& in, const std::string& label) {
   }
   if (in.bad()) throw std::runtime_error(label + ": read error");
   return cases;
+}
+
+void recertify(std::vector<Case>& cases, unsigned threads, const std::string& label) {
+  std::vector<study::Instance> insts(cases.size());
+  for (std::size_t i = 0; i < cases.size(); ++i) insts[i].query = cases[i].query, insts[i].x = cases[i].x;
+  detail::parallel_for(insts.size(), threads, [&](std::size_t i) { study::certify(insts[i]); });
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    Case& c = cases[i];
+    const study::Instance& inst = insts[i];
+    if (inst.certified != c.certified)
+      throw std::runtime_error(label + " line " + std::to_string(c.line) + ": case '" + c.id + "' says meta.certified " +
+                               std::string(to_string(c.certified)) + ", its certified answer is " + std::string(to_string(inst.certified)));
+    c.gap_lo = inst.gap_lo, c.gap_hi = inst.gap_hi, c.t_in = inst.t_in;
+  }
 }
 
 int run_cases(const CaseSpec& spec, std::ostream& out) {

@@ -7,7 +7,10 @@
 //    "certified", "gap": [lo, hi]}}
 // with every coordinate a JSON number (its binary64 value, written to round trip), so
 // `certcyl query` answers it as it stands and passes "meta" through. The gap is null when it is
-// unbounded (cylinder pairs with equal midpoints).
+// unbounded (cylinder pairs with equal midpoints). A line, ray or segment case whose certified
+// answer meets the cylinder also carries "t_in": the certified entry parameter (the nearest double
+// to the exact one; a segment's on p0 + t (p1 - p0)), which the judge scores an answer's
+// interval against (t_error_ulps, as the study scores its methods).
 // With map_cells, the cells of the query's failure maps follow (the maps `certcyl judge` draws
 // for a plugin or a program): id "failure_map/<map>/<row>/<column>", family "failure_map/<map>",
 // k 0 and "meta.map": {"cells", "step", "seed"}; answered in an answers file, they give the
@@ -18,6 +21,7 @@
 
 #include <cstdint>
 #include <iosfwd>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,6 +56,7 @@ struct Case {
   long long k = 0;
   Answer certified = Answer::undecided;
   double gap_lo = 0, gap_hi = 0;
+  double t_in = std::numeric_limits<double>::quiet_NaN();  // line queries that meet: the certified entry parameter
   std::vector<double> x;       // study/instance.hpp layout
   std::size_t line = 0;        // its line in the cases file, or in `certcyl cases` of the same options (from 1)
   std::optional<MapCell> map;  // a failure map's cell (family failure_map/<map>), not a family's case
@@ -73,6 +78,12 @@ nlohmann::ordered_json case_line(const Case& c);
 // std::runtime_error naming `label` and the line: not JSON, a missing or malformed member, a
 // query that is not a study query, a duplicate id.
 std::vector<Case> read_cases(std::istream& in, const std::string& label);
+
+// Certifies cases read from a file again from their inputs, as make_cases does (threads at a
+// time): the judge scores by the certified answer, gap and t_in it computes, never by what a file
+// says. A case whose meta.certified differs from its certified answer is an error: throws
+// std::runtime_error naming `label`, the line and both answers.
+void recertify(std::vector<Case>& cases, unsigned threads, const std::string& label);
 
 // `certcyl cases`: writes the lines; returns the exit status (1 when a write failed).
 int run_cases(const CaseSpec& spec, std::ostream& out);

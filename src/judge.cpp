@@ -160,6 +160,8 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
         mine.push_back(std::move(cases[i]));
       cases = std::move(mine);
     }
+    // A cases file's inputs are certified again (this shard's): its meta is not trusted.
+    if (!o.cases_file.empty()) recertify(cases, o.spec.threads, "--cases: " + o.cases_file);
     namespace fs = std::filesystem;
     const fs::path folder = fs::path(o.out_root) / o.name;
     const fs::path shard_folder =

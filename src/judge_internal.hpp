@@ -38,9 +38,13 @@ struct MapGrid;
 namespace certcyl::cli::judging {
 
 // The judged method's answer to one case: as it said it, and as the study reads it.
+// output.t_in and t_out: the line query's interval as the method gave it (NaN when it gave
+// none); t_in is scored against the certified entry parameter (Case::t_in), t_out is carried
+// into answers.jsonl.
 struct Answered {
   std::string answer;  // separated, touching, overlapping, intersecting, undecided, invalid, error
   study::MethodOutput output;
+  double t_out = std::numeric_limits<double>::quiet_NaN();
 };
 
 // answers[i] answers cases[i]; the cases after a failure have none. `failure` says what went
@@ -62,9 +66,17 @@ Answered answered(const std::string& answer);
 
 // The answer of one answer line (an object): its "answer" (a `certcyl query` line's "invalid"
 // is invalid whatever its "computed_answer", as the study counts a method whose reported value
-// is not finite), or an error line {"id", "error"}, the method's error. Throws
-// std::invalid_argument as answered() does, and when there is no answer.
+// is not finite), or an error line {"id", "error"}, the method's error; and its optional
+// "interval": [t_in, t_out] (numbers, null for none), or `certcyl query`'s two endpoint objects,
+// read by their "approx"; [] or null: none. Throws std::invalid_argument as answered() does, when
+// there is no answer, and on any other interval.
 Answered answered_line(const nlohmann::json& line);
+
+// |t - t*| in units of the ulp of max(|t*|, 1), as the study scores a line method's entry
+// parameter (study_instances.cpp, with the same conditions): NaN unless the query is a line
+// query, the answer is a three-valued one that meets, the certified answer meets, and both
+// parameters are finite.
+double t_error_of(const Answered& a, const Case& c);
 
 // How long a program or a plugin may take for one answer (--timeout); 0: no limit.
 struct Timeout {
@@ -189,6 +201,7 @@ HuntResult judge_hunt(const std::filesystem::path& dir, const std::string& metho
 struct FamilyJudgement {
   std::string query, family;
   std::size_t cases = 0, certified = 0, failures = 0;
+  std::vector<double> t_errors;  // t_error_of each answer that has one (line queries)
   std::map<std::string, std::size_t> outcomes;
   double rate = 0, lo95 = 0, hi95 = 0;
   std::size_t at(const std::string& outcome) const {

@@ -6,11 +6,13 @@
 // and the child killed.
 #include "certcyl/plugin.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <new>
 #include <stdexcept>
 
@@ -44,10 +46,10 @@ using LineFn = int (*)(const double*, const double*, const double*, double*);
 using TriangleFn = int (*)(const double*, const double*);
 using PairFn = int (*)(const double*, const double*);
 
-// Calls the plugin's function for the case's query on its coordinates (study/instance.hpp).
-int call(void* fn, const Case& c) {
+// Calls the plugin's function for the case's query on its coordinates (study/instance.hpp); a
+// line query's interval goes into t (left NaN when the plugin does not write it).
+int call(void* fn, const Case& c, double* t) {
   const double* x = c.x.data();
-  double t[2] = {0, 0};
   switch (c.query) {
     case Query::line_cylinder:
     case Query::ray_cylinder:
@@ -70,15 +72,19 @@ void* open_plugin(const std::string& path) {
 
 // What the child and the parent share (mmap, MAP_SHARED, so it outlives the child's crash): the
 // count of cases answered, in order (the case at the count is the one being answered), then each
-// case's return value.
+// case's return value, then each case's t[2] (NaN until the plugin writes it).
 class Shared {
  public:
-  explicit Shared(std::size_t cases) : bytes_(kValues + sizeof(std::int32_t) * std::max<std::size_t>(cases, 1)) {
+  explicit Shared(std::size_t cases)
+      : cases_(std::max<std::size_t>(cases, 1)),
+        intervals_(kValues + (sizeof(std::int32_t) * cases_ + 15) / 16 * 16),
+        bytes_(intervals_ + 2 * sizeof(double) * cases_) {
     void* p = ::mmap(nullptr, bytes_, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
     if (p == MAP_FAILED) throw std::runtime_error(std::string("--plugin: mmap: ") + std::strerror(errno));
     base_ = static_cast<char*>(p);
     new (base_) std::atomic<std::uint64_t>(0);
     new (base_ + 8) std::atomic<std::uint64_t>(0);
+    std::fill_n(intervals(), 2 * cases_, std::numeric_limits<double>::quiet_NaN());
   }
   ~Shared() { ::munmap(base_, bytes_); }
   Shared(const Shared&) = delete;
@@ -87,11 +93,13 @@ class Shared {
   // The nanoseconds the child spent in the calls, written when it has answered every case.
   std::atomic<std::uint64_t>& call_ns() const { return *std::launder(reinterpret_cast<std::atomic<std::uint64_t>*>(base_ + 8)); }
   std::int32_t* values() const { return reinterpret_cast<std::int32_t*>(base_ + kValues); }
+  // Case i's t[2] at intervals() + 2 i.
+  double* intervals() const { return reinterpret_cast<double*>(base_ + intervals_); }
 
  private:
   static_assert(std::atomic<std::uint64_t>::is_always_lock_free, "the count is shared between processes");
   static constexpr std::size_t kValues = 64;  // the count's cache line, then the values
-  std::size_t bytes_;
+  std::size_t cases_, intervals_, bytes_;
   char* base_;
 };
 
@@ -107,7 +115,7 @@ class Shared {
   for (std::size_t i = 0; i < cases.size(); ++i) {
     void* fn = fns[static_cast<std::size_t>(cases[i].query)];
     if (!fn) _exit(5);  // run_plugin's caller checked that the plugin exports every case's query
-    shared.values()[i] = call(fn, cases[i]);
+    shared.values()[i] = call(fn, cases[i], shared.intervals() + 2 * i);
     shared.answered().store(i + 1, std::memory_order_release);
   }
   const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
@@ -174,6 +182,10 @@ Answers run_plugin(const std::string& path, const std::vector<Case>& cases, cons
         return false;
       }
       result.answers[next] = answered(a);
+      if (study::is_line_query(cases[next].query) && value != CERTCYL_SEPARATED) {
+        result.answers[next]->output.t_in = shared.intervals()[2 * next];
+        result.answers[next]->t_out = shared.intervals()[2 * next + 1];
+      }
     }
     return true;
   };

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -52,6 +53,13 @@ std::string percent(double p) {
   return buf;
 }
 
+// The median (the mean of the middle two of an even count) and the largest of a non-empty list.
+std::pair<double, double> median_and_max(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return {n % 2 ? v[n / 2] : 0.5 * v[n / 2 - 1] + 0.5 * v[n / 2], v.back()};
+}
+
 double gap_size(const Case& c) {
   if (!std::isfinite(c.gap_lo) || !std::isfinite(c.gap_hi)) return std::numeric_limits<double>::infinity();
   return std::fabs(0.5 * c.gap_lo + 0.5 * c.gap_hi);
@@ -75,12 +83,39 @@ Answered answered(const std::string& answer) {
 }
 
 Answered answered_line(const nlohmann::json& j) {
+  Answered a;
   if (j.contains("answer")) {
     if (!j["answer"].is_string()) throw std::invalid_argument("answer: expected a string");
-    return answered(j["answer"].get<std::string>());
+    a = answered(j["answer"].get<std::string>());
+  } else if (j.contains("error")) {
+    return answered("error");
+  } else {
+    throw std::invalid_argument("answer: missing");
   }
-  if (j.contains("error")) return answered("error");
-  throw std::invalid_argument("answer: missing");
+  if (!j.contains("interval") || j["interval"].is_null() || (j["interval"].is_array() && j["interval"].empty())) return a;
+  const nlohmann::json& v = j["interval"];
+  const auto value = [](const nlohmann::json& x) -> std::optional<double> {
+    if (x.is_null()) return std::numeric_limits<double>::quiet_NaN();
+    if (x.is_number()) return x.get<double>();
+    return std::nullopt;
+  };
+  std::optional<double> t[2];
+  if (v.is_array() && v.size() == 2)
+    for (std::size_t i = 0; i < 2; ++i) t[i] = v[i].is_object() ? (v[i].contains("approx") ? value(v[i]["approx"]) : std::nullopt) : value(v[i]);
+  if (!t[0] || !t[1])
+    throw std::invalid_argument("interval: expected [t_in, t_out] (numbers, or `certcyl query`'s endpoints with \"approx\"), got " +
+                                v.dump().substr(0, 80));
+  a.output.t_in = *t[0];
+  a.t_out = *t[1];
+  return a;
+}
+
+double t_error_of(const Answered& a, const Case& c) {
+  const study::MethodOutput& m = a.output;
+  if (!study::is_line_query(c.query) || m.intersecting || !intersects(m.answer) || !intersects(c.certified) || !std::isfinite(m.t_in) ||
+      !std::isfinite(c.t_in))
+    return std::numeric_limits<double>::quiet_NaN();
+  return detail::t_error_ulps(m.t_in, c.t_in);
 }
 
 void write_results(const fs::path& dir, const fs::path& shown, const std::string& method, const std::vector<Case>& cases,
@@ -106,9 +141,11 @@ void write_results(const fs::path& dir, const fs::path& shown, const std::string
     inst.certified = c.certified;
     const std::string outcome = detail::outcome_of(answers.answers[i]->output, inst);
     const std::string query(study::to_string(c.query));
+    const double t_error = t_error_of(*answers.answers[i], c);
     for (FamilyJudgement* n : {&by_family[{query, c.family}], &by_query[query]}) {
       ++n->cases;
       ++n->outcomes[outcome];
+      if (std::isfinite(t_error)) n->t_errors.push_back(t_error);
     }
     if (c.certified != Answer::undecided && study::disagrees(study::judge(answers.answers[i]->output, c.certified)))
       counterexamples.push_back({&c, answers.answers[i]->answer, outcome});
@@ -133,7 +170,7 @@ void write_results(const fs::path& dir, const fs::path& shown, const std::string
   std::ofstream csv(dir / "families.csv");
   csv << "method,query,family,cases";
   for (const char* o : kOutcomes) csv << ',' << o;
-  csv << ",failures,failure_rate,failure_rate_lo95,failure_rate_hi95\n";
+  csv << ",failures,failure_rate,failure_rate_lo95,failure_rate_hi95,t_errors,t_error_median_ulps,t_error_max_ulps\n";
   std::ostringstream table;
   table << "certcyl judge: " << method << ", " << j.judged << " of " << cases.size() << " cases judged\n";
   char line[256];
@@ -146,10 +183,17 @@ void write_results(const fs::path& dir, const fs::path& shown, const std::string
     csv << ',' << n.failures;
     std::string rate = "-";
     if (n.certified > 0) {
-      csv << ',' << detail::num(n.rate) << ',' << detail::num(n.lo95) << ',' << detail::num(n.hi95) << '\n';
+      csv << ',' << detail::num(n.rate) << ',' << detail::num(n.lo95) << ',' << detail::num(n.hi95);
       rate = percent(n.rate) + " [" + percent(n.lo95) + ", " + percent(n.hi95) + "]";
     } else {
-      csv << ",,,\n";
+      csv << ",,,";
+    }
+    csv << ',' << n.t_errors.size();
+    if (!n.t_errors.empty()) {
+      const auto [median, max] = median_and_max(n.t_errors);
+      csv << ',' << detail::num(median) << ',' << detail::num(max) << '\n';
+    } else {
+      csv << ",,\n";
     }
     std::snprintf(line, sizeof line, "%-24s %-20s %6zu %6zu %6zu %6zu %6zu %6zu %6zu %6zu %6zu  %s\n", n.query.c_str(), n.family.c_str(),
                   n.cases, n.at("agree"), n.at("false_positive"), n.at("false_negative"), n.at("class_mismatch"), n.at("undecided"),
@@ -157,6 +201,13 @@ void write_results(const fs::path& dir, const fs::path& shown, const std::string
     table << line;
   }
   table << "failures: false positives and false negatives among the certified cases (the study's disagreements)\n";
+  for (const FamilyJudgement& n : j.rows) {
+    if (n.t_errors.empty()) continue;
+    const auto [median, max] = median_and_max(n.t_errors);
+    std::snprintf(line, sizeof line, "entry parameter t, %s %s: %zu intervals, error median %.3g, max %.3g ulps\n", n.query.c_str(),
+                  n.family.c_str(), n.t_errors.size(), median, max);
+    table << line;
+  }
 
   // counterexamples.jsonl: smallest |gap| first, one line per distinct input.
   std::stable_sort(counterexamples.begin(), counterexamples.end(),
@@ -215,7 +266,15 @@ void write_results(const fs::path& dir, const fs::path& shown, const std::string
   // answers.jsonl: the answers as judged, an answers file for the same cases (a shard's, merged).
   std::ofstream given(dir / "answers.jsonl");
   for (std::size_t i = 0; i < cases.size(); ++i)
-    if (answers.answers[i]) given << nlohmann::ordered_json{{"id", cases[i].id}, {"answer", answers.answers[i]->answer}}.dump() << '\n';
+    if (answers.answers[i]) {
+      nlohmann::ordered_json l{{"id", cases[i].id}, {"answer", answers.answers[i]->answer}};
+      const Answered& a = *answers.answers[i];
+      if (std::isfinite(a.output.t_in) || std::isfinite(a.t_out)) {
+        const auto number = [](double t) { return std::isfinite(t) ? nlohmann::ordered_json(t) : nlohmann::ordered_json(nullptr); };
+        l["interval"] = nlohmann::ordered_json::array({number(a.output.t_in), number(a.t_out)});
+      }
+      given << l.dump() << '\n';
+    }
 
   std::ofstream summary(dir / "summary.txt");
   summary << table.str();

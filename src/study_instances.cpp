@@ -16,16 +16,13 @@ namespace {
 
 std::mutex serial_mutex;
 
-// |t - t*| in units of the ulp of max(|t*|, 1): the parameter's own ulp away from 0, and an
-// absolute measure near 0 (where counting representable doubles would make 1e-17 against 0
-// an error of 2^62 "ulps").
+}  // namespace
+
 double t_error_ulps(double t, double exact) {
   const double scale = std::max(std::fabs(exact), 1.0);
   const double ulp = std::nextafter(scale, std::numeric_limits<double>::infinity()) - scale;
   return static_cast<double>(std::fabs(static_cast<long double>(t) - static_cast<long double>(exact)) / ulp);
 }
-
-}  // namespace
 
 // Runs a method and measures it: one timed call; calls under 2 us are repeated 16 times and
 // the mean of the repetitions is reported (the clock costs ~20 ns per reading).

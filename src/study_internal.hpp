@@ -108,6 +108,12 @@ study::MethodOutput run_quiet(const study::Method& m, const std::vector<double>&
 // The same with its time in nanoseconds: one timed call, repeated 16 times under 2 us.
 std::pair<study::MethodOutput, double> run_timed(const study::Method& m, const std::vector<double>& x);
 
+// A line method's entry parameter t against the certified t* (instances.csv's t_error_ulps, and
+// the judge's): |t - t*| in units of the ulp of max(|t*|, 1), the parameter's own ulp away from
+// 0 and an absolute measure near 0 (where counting representable doubles would make 1e-17
+// against 0 an error of 2^62 "ulps").
+double t_error_ulps(double t, double exact);
+
 // One call of a serial method in ChildRunner: the output and time (run_timed; 0 untimed), or
 // `ended` when the call ended the child (`reason`: the exit status or the signal; out.error set).
 // `isolated` is false when no child could be started and the call ran in this process.

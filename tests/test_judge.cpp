@@ -205,6 +205,95 @@ BOOST_AUTO_TEST_CASE(answers_file_scored_per_family) {
   }
 }
 
+// An answers file's intervals: each meeting line case answered with its certified answer and an
+// entry parameter d ulps (of max(|t*|, 1)) from the certified one, d chosen per case; the
+// median and largest error per family in families.csv are those of the d's, computed here in
+// exact rationals from the numbers written. `certcyl query`'s endpoint objects are read too,
+// and answers.jsonl carries the intervals back.
+BOOST_AUTO_TEST_CASE(answer_intervals_are_scored_like_the_study) {
+  Scratch s;
+  BOOST_TEST_REQUIRE(
+      s.run(kCertcyl + " cases --query segment_cylinder --size 4 --family tangent --family on_wall --family cap_plane > cases.jsonl").status == 0);
+  std::map<std::string, std::vector<double>> expected;  // family -> errors in ulps
+  const std::vector<long> offsets = {0, 3, -1000, 7};
+  std::size_t n = 0;
+  {
+    std::ofstream answers(s / "mine.jsonl");
+    for (const std::string& l : lines_of(slurp(s / "cases.jsonl"))) {
+      const json c = json::parse(l);
+      const std::string certified = c["meta"]["certified"];
+      json a{{"id", c["id"]}, {"answer", certified}};
+      if (c["meta"].contains("t_in")) {
+        const double t = c["meta"]["t_in"].get<double>();
+        const double scale = std::max(std::fabs(t), 1.0), ulp = std::nextafter(scale, INFINITY) - scale;
+        const long d = offsets[n++ % offsets.size()];
+        const double mine = t + static_cast<double>(d) * ulp;
+        // The error as written, exactly: |mine - t| / ulp.
+        const Rational e = (Rational(mine) - Rational(t)) / Rational(ulp);
+        expected[c["meta"]["family"]].push_back(CGAL::to_double(e < 0 ? Rational(-e) : e));
+        // Half the answers as numbers, half as `certcyl query` writes endpoints.
+        if (n % 2) a["interval"] = json::array({mine, mine + 1});
+        else a["interval"] = json::array({json{{"approx", mine}, {"feature", "wall"}}, json{{"approx", nullptr}}});
+      } else {
+        BOOST_TEST(!(certified == "touching" || certified == "overlapping"), l);  // a meeting case has t_in
+      }
+      answers << a.dump() << '\n';
+    }
+  }
+  BOOST_TEST_REQUIRE(n >= 6u);
+  const Run r = s.run(kCertcyl + " judge --cases cases.jsonl --answers mine.jsonl --name mine");
+  BOOST_TEST_REQUIRE(r.status == 0, r.err);
+  const auto csv = families_csv(s.dir / "results/mine/families.csv");
+  for (auto& [family, errors] : expected) {
+    const auto& row = csv.at({"segment_cylinder", family});
+    std::sort(errors.begin(), errors.end());
+    const std::size_t m = errors.size();
+    const double median = m % 2 ? errors[m / 2] : 0.5 * errors[m / 2 - 1] + 0.5 * errors[m / 2];
+    BOOST_TEST(count(row, "t_errors") == static_cast<long>(m), family);
+    BOOST_TEST(std::stod(row.at("t_error_median_ulps")) == median, family);
+    BOOST_TEST(std::stod(row.at("t_error_max_ulps")) == errors.back(), family);
+    BOOST_TEST(r.out.find("entry parameter t, segment_cylinder " + family + ": " + std::to_string(m) + " intervals") != std::string::npos, r.out);
+  }
+  // answers.jsonl keeps the intervals: judged again, the same families.csv.
+  const Run again = s.run(kCertcyl + " judge --cases cases.jsonl --answers results/mine/answers.jsonl --name again --label mine");
+  BOOST_TEST_REQUIRE(again.status == 0, again.err);
+  BOOST_TEST(slurp(s.dir / "results/again/families.csv") == slurp(s.dir / "results/mine/families.csv"));
+}
+
+// A cases file is certified again: a line whose meta.certified was changed is an error naming
+// the line and both answers; a changed gap or t_in is replaced by the certified one.
+BOOST_AUTO_TEST_CASE(a_cases_file_is_certified_again) {
+  Scratch s;
+  BOOST_TEST_REQUIRE(s.run(kCertcyl + " cases --query line_cylinder --family tangent --size 3 > cases.jsonl").status == 0);
+  const auto lines = lines_of(slurp(s / "cases.jsonl"));
+  BOOST_TEST_REQUIRE(lines.size() == 3u);
+  json second = json::parse(lines[1]);
+  const std::string certified = second["meta"]["certified"];
+  {
+    std::ofstream answers(s / "answers.jsonl");
+    for (const std::string& l : lines) answers << json{{"id", json::parse(l)["id"]}, {"answer", "separated"}}.dump() << '\n';
+  }
+  json changed = second;
+  changed["meta"]["certified"] = certified == "separated" ? "overlapping" : "separated";
+  std::ofstream(s / "changed.jsonl") << lines[0] << '\n' << changed.dump() << '\n' << lines[2] << '\n';
+  const Run r = s.run(kCertcyl + " judge --cases changed.jsonl --answers answers.jsonl");
+  BOOST_TEST(r.status == 1);
+  BOOST_TEST(r.err.find("changed.jsonl line 2: case '" + second["id"].get<std::string>() + "' says meta.certified " +
+                        changed["meta"]["certified"].get<std::string>() + ", its certified answer is " + certified) != std::string::npos,
+             r.err);
+  // Gap and t_in moved: the counterexamples carry the certified ones.
+  json moved = second;
+  moved["meta"]["gap"] = json::array({-5.0, -4.0});
+  moved["meta"]["t_in"] = 123.0;
+  std::ofstream(s / "moved.jsonl") << lines[0] << '\n' << moved.dump() << '\n' << lines[2] << '\n';
+  const Run m = s.run(kCertcyl + " judge --cases moved.jsonl --answers answers.jsonl --name moved");
+  BOOST_TEST_REQUIRE(m.status == 0, m.err);
+  const Run o = s.run(kCertcyl + " judge --cases cases.jsonl --answers answers.jsonl --name original");
+  BOOST_TEST_REQUIRE(o.status == 0, o.err);
+  BOOST_TEST(slurp(s.dir / "results/moved/counterexamples.jsonl") == slurp(s.dir / "results/original/counterexamples.jsonl"));
+  BOOST_TEST(slurp(s.dir / "results/moved/families.csv") == slurp(s.dir / "results/original/families.csv"));
+}
+
 BOOST_AUTO_TEST_CASE(report_page_is_self_contained_and_names_the_failures) {
   // index.html: a method always answering "separated" on the tangent lines, under a label with
   // markup in it. The label is shown as text, never as markup; the page loads nothing; every
@@ -314,6 +403,10 @@ BOOST_AUTO_TEST_CASE(bad_answers_files_name_the_line) {
       {a + "\n" + b + "\n" + R"({"id":"x","answer":"separated"})" + "\n", "answers.jsonl line 3: id 'x' is not a case"},
       {a + "\n{\"id\": \n", "answers.jsonl line 2: not JSON"},
       {R"({"answer":"separated"})" "\n", "answers.jsonl line 1: id: expected"},
+      {a + "\n" + R"({"id":"line_cylinder/tangent/1","answer":"touching","interval":[1]})" + "\n",
+       "answers.jsonl line 2: interval: expected [t_in, t_out]"},
+      {a + "\n" + R"({"id":"line_cylinder/tangent/1","answer":"touching","interval":["0.5",1]})" + "\n",
+       "answers.jsonl line 2: interval: expected [t_in, t_out]"},
   };
   for (const auto& [text, message] : bad) {
     std::ofstream(s / "answers.jsonl") << text;
@@ -433,6 +526,16 @@ BOOST_AUTO_TEST_CASE(example_plugin_fails_where_a_double_test_fails) {
     BOOST_TEST(count(csv.at({q, "uniform"}), "failures") == 0);
   }
   BOOST_TEST(near_tangent > 0);
+  // Its t[2] is read: the double test's entry parameter is within an ulp of the certified one on
+  // most meeting cases (on_wall: exactly; a t read from another case, or not at all, would not
+  // be), though not near tangency.
+  for (const char* q : {"line_cylinder", "ray_cylinder", "segment_cylinder"}) {
+    const auto& all = csv.at({q, "all"});
+    BOOST_TEST(count(all, "t_errors") >= 10, q);
+    if (count(all, "t_errors") > 0) BOOST_TEST(std::stod(all.at("t_error_median_ulps")) <= 1.0, q);
+    const auto& on_wall = csv.at({q, "on_wall"});
+    if (count(on_wall, "t_errors") > 0) BOOST_TEST(std::stod(on_wall.at("t_error_max_ulps")) == 0.0, q);
+  }
   // The capsule test meets the cylinders near the caps.
   BOOST_TEST(count(csv.at({"cylinder_cylinder", "c_cap_cap"}), "false_positive") + count(csv.at({"cylinder_cylinder", "c_rim_cap"}), "false_positive") > 0);
   // speed.csv: one row per query it exports in the study's summary.csv columns but the last,

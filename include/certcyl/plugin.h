@@ -9,7 +9,10 @@
  * A cylinder is 7 doubles: p0[3], p1[3], radius (the solid, closed cylinder around the axis
  * segment p0 p1). A triangle is 9 doubles: three vertices. A line is origin + t direction, a ray
  * the same with t >= 0, a segment p0 + t (p1 - p0) with t in [0, 1]. t[2] receives the parameter
- * interval of a line query when the answer is not separated (may be ignored). */
+ * interval of a line query when the answer is not separated (may be left unwritten: it starts as
+ * NaN). `certcyl judge` scores t[0] against the certified entry parameter, in ulps of
+ * max(|t*|, 1) (families.csv's t_error columns), when the answer and the certified answer both
+ * say the line meets the cylinder. */
 #ifndef CERTCYL_PLUGIN_H
 #define CERTCYL_PLUGIN_H
 
