@@ -1,8 +1,10 @@
 // `certcyl cases` and `certcyl judge`: the cases are lines `certcyl query` answers with their
 // certified answer and read back bit for bit; an answers file is scored with counts derived here
 // from the cases' certified answers; bad answers files are errors naming the line; a co-process
-// (`certcyl query --method shene --nt double`) gets the counts of the study's shene/double
-// method, computed here by the study's code; a program that stops, dies or writes garbage ends
+// (`certcyl query --method shene --nt double`) gets the counts and entry-parameter errors of the
+// study's shene/double method, computed here by the study's code; answers' intervals are scored
+// against the certified entry parameter, and a cases file is certified again, never trusted;
+// a program that stops, dies or writes garbage ends
 // the run with what was judged kept; the example plugin's failures are named where they occur,
 // and a plugin that crashes keeps the answers before the crash.
 #define BOOST_TEST_MODULE judge
@@ -438,14 +440,19 @@ BOOST_AUTO_TEST_CASE(coprocess_gets_the_study_counts) {
   });
   BOOST_TEST_REQUIRE((shene != registry.end()));
   std::map<std::string, std::map<std::string, long>> study_counts;
+  std::map<std::string, std::vector<double>> study_t_errors;  // instances.csv's t_error_ulps, per family
   long failures = 0;
   for (cli::detail::Planned& p : plan) {
     study::certify(p.inst);
-    const std::string outcome = cli::detail::outcome_of(cli::detail::run_quiet(*shene, p.inst.x), p.inst);
+    const study::MethodOutput out = cli::detail::run_quiet(*shene, p.inst.x);
+    const std::string outcome = cli::detail::outcome_of(out, p.inst);
     ++study_counts[p.inst.family][outcome];
     failures += outcome == "false_positive" || outcome == "false_negative";
+    if (!out.intersecting && intersects(out.answer) && intersects(p.inst.certified) && std::isfinite(out.t_in) && std::isfinite(p.inst.t_in))
+      study_t_errors[p.inst.family].push_back(cli::detail::t_error_ulps(out.t_in, p.inst.t_in));
   }
   BOOST_TEST(failures > 0);  // the comparison is not only of zeros
+  BOOST_TEST(study_t_errors.size() > 5u);
 
   Scratch s;
   const Run r = s.run(kCertcyl + " judge --exec \"" + kCertcyl + " query --method shene --nt double\" --query line_cylinder --size small");
@@ -455,6 +462,17 @@ BOOST_AUTO_TEST_CASE(coprocess_gets_the_study_counts) {
     for (const char* o : {"agree", "false_positive", "false_negative", "class_mismatch", "undecided", "error", "invalid", "uncertified"})
       BOOST_TEST(count(csv.at({"line_cylinder", family}), o) == (outcomes.count(o) ? outcomes.at(o) : 0), family << " " << o);
   BOOST_TEST(csv.size() == study_counts.size() + 1);  // and the query's "all" row
+  // The entry parameters `certcyl query` writes as "approx" are the study's: the same errors.
+  for (const auto& [family, outcomes] : study_counts) {
+    const auto& row = csv.at({"line_cylinder", family});
+    std::vector<double> t = study_t_errors[family];
+    BOOST_TEST(count(row, "t_errors") == static_cast<long>(t.size()), family);
+    if (t.empty()) continue;
+    std::sort(t.begin(), t.end());
+    const double median = t.size() % 2 ? t[t.size() / 2] : 0.5 * t[t.size() / 2 - 1] + 0.5 * t[t.size() / 2];
+    BOOST_TEST(std::stod(row.at("t_error_median_ulps")) == median, family);
+    BOOST_TEST(std::stod(row.at("t_error_max_ulps")) == t.back(), family);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(coprocess_failures_keep_what_was_judged) {
