@@ -10,7 +10,8 @@
 // with N rows per operand, returning N answers. An answer is an answer code (SEPARATED ...
 // UNDECIDED of the module; a negative code is an error of the method), a bool (True: the sets
 // meet, False: separated) or a word (`separated`, ..., `intersecting`, `undecided`, `invalid`,
-// `error`). Then, as for a plugin or a program, the failure maps of the query (judge_failure_maps:
+// `error`); for a line query also (answer, t_in[, t_out]), its interval scored as an answers
+// file's. Then, as for a plugin or a program, the failure maps of the query (judge_failure_maps:
 // every cell in one call when vectorised) and the hunt for its worst input (judge_hunt, one input
 // per call), sized by map_cells and hunt_evaluations as `certcyl judge` sizes them. An exception
 // raised by the function ends the run as a crashed plugin ends it: what was answered before it
@@ -20,6 +21,7 @@
 #include <chrono>
 #include <exception>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -96,13 +98,36 @@ std::string answer_word(py::handle value, const cli::Case& c) {
   return {};
 }
 
-cli::judging::Answered read_answer(py::handle value, const cli::Case& c) {
+cli::judging::Answered read_word(py::handle value, const cli::Case& c) {
   const std::string word = answer_word(value, c);
   try {
     return cli::judging::answered(word);
   } catch (const std::invalid_argument&) {
     throw py::value_error("judge: case " + c.id + ": unknown answer '" + word + "'");
   }
+}
+
+// An answer, or (answer, t_in) / (answer, t_in, t_out) for a line query: the interval, scored as
+// `certcyl judge` scores an answers file's (judge_report.cpp, t_error_of); None for none.
+cli::judging::Answered read_answer(py::handle value, const cli::Case& c) {
+  if (!py::isinstance<py::tuple>(value) && !py::isinstance<py::list>(value)) return read_word(value, c);
+  const py::sequence s = py::reinterpret_borrow<py::sequence>(value);
+  if (!study::is_line_query(c.query) || (s.size() != 2 && s.size() != 3) || py::isinstance<py::tuple>(s[0]) ||
+      py::isinstance<py::list>(s[0]))
+    throw py::value_error("judge: case " + c.id + ": the function returned " + py::repr(value).cast<std::string>() +
+                          " (a line, ray or segment query may return (answer, t_in) or (answer, t_in, t_out))");
+  cli::judging::Answered a = read_word(s[0], c);
+  const auto number = [&](py::handle x) {
+    if (x.is_none()) return std::numeric_limits<double>::quiet_NaN();
+    try {
+      return py::float_(py::reinterpret_borrow<py::object>(x)).cast<double>();
+    } catch (const py::error_already_set&) {
+      throw py::value_error("judge: case " + c.id + ": interval: not a number: " + py::repr(x).cast<std::string>());
+    }
+  };
+  a.output.t_in = number(s[1]);
+  if (s.size() == 3) a.t_out = number(s[2]);
+  return a;
 }
 
 // The function's answers to `cases` (one call with every case when vectorized, else one per

@@ -204,7 +204,7 @@ class JudgeResult:
                 for k, v in row.items():
                     if k in ("method", "query", "family") or v == "":
                         continue
-                    row[k] = float(v) if k.startswith("failure_rate") else int(v)
+                    row[k] = float(v) if k.startswith(("failure_rate", "t_error_")) else int(v)
                 self.families.append(row)
 
     def family(self, query, family="all"):
@@ -230,7 +230,10 @@ def judge(function, query="ray_cylinder", size="small", *, vectorized=False, see
     vectorized=True it is called once with every case, N rows per operand, and returns N answers.
     An answer is an answer code (SEPARATED, TOUCHING, OVERLAPPING, INTERSECTING, UNDECIDED; a
     negative code is an error of the method), a bool (True: the sets meet) or a word
-    ("separated", ..., "intersecting", "undecided", "invalid", "error").
+    ("separated", ..., "intersecting", "undecided", "invalid", "error"). A line, ray or segment
+    query may return (answer, t_in) or (answer, t_in, t_out) (None for none): its entry parameter
+    is then scored against the certified one as ``certcyl judge`` scores an answers file's
+    interval (families.csv's t_error columns).
 
     Then, as ``certcyl judge`` does for a plugin or a program, the query's failure maps
     (map_cells x map_cells cells, map_step ulps apart; map_cells None: the size's, 16 tiny, 32

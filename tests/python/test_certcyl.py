@@ -363,6 +363,33 @@ class Judge(unittest.TestCase):
     def judge(self, function, size="tiny", **options):
         return certcyl.judge(function, "line_cylinder", size, out=self.tmp.name, **options)
 
+    def test_intervals_are_scored_against_the_certified_entry_parameter(self):
+        # The certified query's own interval: every meeting case scored, every error 0. Moved by
+        # two ulps of max(|t|, 1): errors of 2 (3 where the sum rounds across a power of two).
+        # As a vectorized function returning (answer, t_in, t_out) rows, and with t_out None.
+        def certified(shift):
+            def method(origin, direction, cylinder):
+                r = certcyl.line_cylinder(origin, direction, cylinder)
+                rows = []
+                for a, t_in, t_out in zip(r.answer, r.t_in, r.t_out):
+                    t = float(t_in)
+                    if not math.isnan(t):
+                        t += shift * math.ulp(max(abs(t), 1.0))
+                    rows.append((int(a), None if math.isnan(t) else t, None if shift else float(t_out)))
+                return rows
+            return method
+        exact = self.judge(certified(0), vectorized=True, name="exact_t").family("line_cylinder")
+        self.assertEqual(exact["t_errors"], self.meeting)
+        self.assertEqual((exact["t_error_median_ulps"], exact["t_error_max_ulps"]), (0.0, 0.0))
+        moved = self.judge(certified(2), vectorized=True, name="moved_t").family("line_cylinder")
+        self.assertEqual(moved["t_errors"], self.meeting)
+        self.assertEqual(moved["t_error_median_ulps"], 2.0)
+        self.assertLessEqual(moved["t_error_max_ulps"], 3.0)
+        self.assertGreaterEqual(moved["t_error_max_ulps"], 2.0)
+        # A pair that is not (answer, t_in[, t_out]) is an error naming the case.
+        with self.assertRaisesRegex(ValueError, "may return \\(answer, t_in\\)"):
+            self.judge(lambda o, d, c: ("separated", 0.0, 1.0, 2.0), name="bad_t")
+
     def test_the_certified_answers_agree_everywhere(self):
         def certified(origin, direction, cylinder):
             return int(certcyl.line_cylinder(origin, direction, cylinder).answer[0])
