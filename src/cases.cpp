@@ -63,6 +63,11 @@ void read_coordinates(const ojson& shape, const nlohmann::json& given, const std
   }
 }
 
+// What the case is scored by, from its certified instance: the answer, the gap and t_in.
+void take_certified(Case& c, const study::Instance& inst) {
+  c.certified = inst.certified, c.gap_lo = inst.gap_lo, c.gap_hi = inst.gap_hi, c.t_in = inst.t_in;
+}
+
 ojson gap_json(const Case& c) {
   if (!std::isfinite(c.gap_lo) || !std::isfinite(c.gap_hi)) return nullptr;
   return ojson::array({c.gap_lo, c.gap_hi});
@@ -172,7 +177,7 @@ std::vector<Case> make_cases(const CaseSpec& spec) {
     Case c;
     c.id = spec.query + "/" + p.inst.family + "/" + std::to_string(p.index_in_family);
     c.query = q, c.family = p.inst.family, c.k = p.k;
-    c.certified = p.inst.certified, c.gap_lo = p.inst.gap_lo, c.gap_hi = p.inst.gap_hi, c.t_in = p.inst.t_in;
+    take_certified(c, p.inst);
     c.x = p.inst.x;
     c.line = cases.size() + 1;
     cases.push_back(std::move(c));
@@ -224,7 +229,7 @@ void recertify(std::vector<Case>& cases, unsigned threads, const std::string& la
     if (inst.certified != c.certified)
       throw std::runtime_error(label + " line " + std::to_string(c.line) + ": case '" + c.id + "' says meta.certified " +
                                std::string(to_string(c.certified)) + ", its certified answer is " + std::string(to_string(inst.certified)));
-    c.gap_lo = inst.gap_lo, c.gap_hi = inst.gap_hi, c.t_in = inst.t_in;
+    take_certified(c, inst);
   }
 }
 

@@ -365,24 +365,9 @@ inline double phi_lower_from_sigma(double sigma_upper) {
   return kStaticRoundDown * (1 / sigma_upper);
 }
 
-// The span in binades of an exact pair (CylinderCylinderOptions::max_precision): from the
-// smallest nonzero magnitude among the radii and the coordinates of A0, A1 and T (the sizes the
-// geometry works at) to the largest coordinate or radius (what a rounded Gmpfr input loses its
-// bits against). The digits of a rational do not count: the Gmpfr rounds only produce
-// candidates, and every check is exact.
-// floor(log2 |q|) within one, for q != 0.
+// floor(log2 |q|) within one, for q != 0 (exactly, for a dyadic q).
 inline long binade(const Rational& q) {
   return static_cast<long>(mpz_sizeinbase(mpq_numref(q.mpq()), 2)) - static_cast<long>(mpz_sizeinbase(mpq_denref(q.mpq()), 2));
-}
-
-inline long cylinder_pair_span_bits(const CylinderPair<Rational>& e) {
-  long hi = std::numeric_limits<long>::min(), lo = std::numeric_limits<long>::max();
-  for (const Cylinder<Rational>* c : {&e.c0, &e.c1})
-    for (const Rational* q : {&c->p0.x, &c->p0.y, &c->p0.z, &c->p1.x, &c->p1.y, &c->p1.z, &c->radius})
-      if (mpq_sgn(q->mpq()) != 0) hi = std::max(hi, binade(*q));
-  for (const Rational* q : {&e.c0.radius, &e.c1.radius, &e.A0.x, &e.A0.y, &e.A0.z, &e.A1.x, &e.A1.y, &e.A1.z, &e.T.x, &e.T.y, &e.T.z})
-    if (mpq_sgn(q->mpq()) != 0) lo = std::min(lo, binade(*q));
-  return std::max(0L, hi - lo + 2);
 }
 
 // floor(log2 |x|) of a dyadic x != 0, exactly: from CGAL's enclosure of x between two doubles
@@ -398,15 +383,20 @@ inline long binade(const CGAL::Mpzf& x) {
   return binade(Rational(static_cast<CGAL::Gmpq>(x)));
 }
 
-// cylinder_pair_span_bits of an exact dyadic pair in Mpzf: the same number as for the pair in
-// Gmpq, and as for the pair times any power of two (the binades of dyadic numbers are exact, and
-// the scaling moves them all alike).
-inline long cylinder_pair_span_bits(const CylinderPair<CGAL::Mpzf>& e) {
+// The span in binades of an exact pair (CylinderCylinderOptions::max_precision): from the
+// smallest nonzero magnitude among the radii and the coordinates of A0, A1 and T (the sizes the
+// geometry works at) to the largest coordinate or radius (what a rounded Gmpfr input loses its
+// bits against). The digits of a rational do not count: the Gmpfr rounds only produce
+// candidates, and every check is exact. NT is Rational or, for a dyadic pair, Mpzf: the same
+// number for the pair in either type, and for the pair times any power of two (the binades of
+// dyadic numbers are exact, and the scaling moves them all alike).
+template <class NT>
+long cylinder_pair_span_bits(const CylinderPair<NT>& e) {
   long hi = std::numeric_limits<long>::min(), lo = std::numeric_limits<long>::max();
-  for (const Cylinder<CGAL::Mpzf>* c : {&e.c0, &e.c1})
-    for (const CGAL::Mpzf* q : {&c->p0.x, &c->p0.y, &c->p0.z, &c->p1.x, &c->p1.y, &c->p1.z, &c->radius})
+  for (const Cylinder<NT>* c : {&e.c0, &e.c1})
+    for (const NT* q : {&c->p0.x, &c->p0.y, &c->p0.z, &c->p1.x, &c->p1.y, &c->p1.z, &c->radius})
       if (CGAL::sign(*q) != CGAL::ZERO) hi = std::max(hi, binade(*q));
-  for (const CGAL::Mpzf* q : {&e.c0.radius, &e.c1.radius, &e.A0.x, &e.A0.y, &e.A0.z, &e.A1.x, &e.A1.y, &e.A1.z, &e.T.x, &e.T.y, &e.T.z})
+  for (const NT* q : {&e.c0.radius, &e.c1.radius, &e.A0.x, &e.A0.y, &e.A0.z, &e.A1.x, &e.A1.y, &e.A1.z, &e.T.x, &e.T.y, &e.T.z})
     if (CGAL::sign(*q) != CGAL::ZERO) lo = std::min(lo, binade(*q));
   return std::max(0L, hi - lo + 2);
 }

@@ -98,11 +98,7 @@ struct RingFrame {
     if (L != 1) mpz_mul(den, den, L.mpz());
     if (e >= 0) mpz_mul_2exp(den, den, static_cast<mp_bitcnt_t>(e));
     if (e < 0) mpz_mul_2exp(num, num, static_cast<mp_bitcnt_t>(-e));
-    if (mpz_sgn(den) < 0) {
-      mpz_neg(num, num);
-      mpz_neg(den, den);
-    }
-    mpq_canonicalize(y.mpq());
+    mpq_canonicalize(y.mpq());  // also makes the denominator positive (w < 0)
     return y;
   }
 };
