@@ -98,6 +98,11 @@ std::vector<Family> deep_families() {
 //    upper face's rim point crosses the plane by about 2^-829.
 //  wall_on_tilted_cap: b's lowest line lies in z = 2 and crosses a's unit cap disk near (1, 0);
 //    a's axis is tilted by about 2^-1035, which lifts its cap plane by about 2^-1035 at x ~ 1.
+//  needles_cap_on_wall: a along y (2^422 long, radius 45/2); b's cap disk at (45/2, 45/2, 45/2)
+//    touches a's wall at (45/2, 45/2, 0) and is tilted about 2^-422 into it: the common interior
+//    is about 2^-560 deep, 2^-140 from the touching point (test_cylinder_wide_range.cpp).
+//  rim_line_quarter: rim_line_tangent_400 with b's end at x = -1/4, where b's lowest line crosses
+//    a's rim inside its cap disk.
 std::vector<Family> fuzz_found_families() {
   static std::vector<WideCase> cases;
   using cctest::Q;
@@ -113,6 +118,9 @@ std::vector<Family> fuzz_found_families() {
   add("rim_line_tangent_600", cyl(0, 2, 0, 0x1.8cp+6, -0x1.01414fbp+401, 0x1.72727275a27d5p-397, r),
       cyl(r, -0x1.8cp+6, 0x1.0000224p+417, r, r, r, r));
   add("pancake_rim_cap", cyl(0, 0, 0, 0, 0, 0x1.fp-829, 0x1.8p-1), cyl(0x1.8p-1, 0x1.7p+0, 0x1.8p-1, 0x1.8p-1, 0x1.8p-1, 0, 0x1.2p+3));
+  add("needles_cap_on_wall", cyl(0, 0, 0, 0, 0x1p+422, 0, 22.5), cyl(0x1p+422, 8.75, 22.5, 22.5, 22.5, 22.5, 22.5));
+  add("rim_line_quarter", cyl(0, 0, 0x1.8cp+6, 2, -0x1.01414fb0000fap+401, 0x1.72727275a27d5p-397, r),
+      cyl(r, 0, 0x1.00002p+417, -0.25, r, r, r));
   add("wall_on_tilted_cap", cyl(0x0.000fffb0008p-1022, 0, 0, 0, 0, 2, 1), cyl(-1, 0x1.8p+6, 0x1.8p+1, 1, 0, 0x1.8p+1, 1));
   std::vector<Family> out;
   for (const WideCase& c : cases) out.push_back({c.name, {&c}});

@@ -89,6 +89,18 @@ pairs = {
 for name, b in pairs.items():
     write("fuzz_cylinder_cylinder", name, A + b)
 
+# Rims dipping into the other cylinder far below an ulp (tests/test_cylinder_wide_range.cpp).
+h = float.fromhex
+R = h("0x1.38p-2")
+full_pairs = {
+    "needles_cap_on_wall": vec(0, 0, 0) + vec(0, 2.0**422, 0) + num(22.5)
+    + vec(2.0**422, 8.75, 22.5) + vec(22.5, 22.5, 22.5) + num(22.5),
+    "rim_line_quarter": vec(0, 0, 99) + vec(2, h("-0x1.01414fb0000fap+401"), h("0x1.72727275a27d5p-397")) + num(R)
+    + vec(R, 0, h("0x1.00002p+417")) + vec(-0.25, R, R) + num(R),
+}
+for name, ab in full_pairs.items():
+    write("fuzz_cylinder_cylinder", name, ab)
+
 cyl = {"p0": [0, 0, 0], "p1": [0, 0, 2], "radius": 5}
 queries = {
     "point": {"id": 1, "query": "point_cylinder", "point": [3, 4, 1], "cylinder": cyl},

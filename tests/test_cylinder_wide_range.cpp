@@ -577,3 +577,50 @@ BOOST_AUTO_TEST_CASE(a_wall_sunk_into_a_tilted_cap_is_decided_by_the_exact_candi
     }
   }
 }
+
+// Rims dipping into the other cylinder far below an ulp (found by the pair fuzz harness, 1 to 2 s
+// per query in the ellipsoid stage at 2,048 bits before the rim points nearest the other's axis
+// were candidates).
+//   Needles: a is the y axis from the origin to (0, 2^422, 0), radius 45/2; b runs from
+//   (2^422, 35/4, 45/2) to its end p1 = (45/2, 45/2, 45/2), radius 45/2, so its cap disk at p1
+//   touches a's wall x^2 + z^2 = (45/2)^2 at (45/2, 45/2, 0), and its cap plane D.(X - p1) = 0,
+//   D = (2^422 - 45/2, -55/4, 0), is tilted by about 2^-422 toward a. With k = (55/4) / (2^422 -
+//   45/2), eta = 2^-140 and zeta = 2^-280, the point X = p1 + (-k eta, -eta, zeta - 45/2) lies
+//   on the cap plane, in the open disk (|X - p1|^2 = (1 + k^2) eta^2 + (45/2 - zeta)^2 < (45/2)^2
+//   since (1 + k^2) 2^-280 + 2^-560 < 45 2^-280), and inside a: x^2 + z^2 = (45/2 - k eta)^2 +
+//   zeta^2 < (45/2)^2 since zeta^2 = 2^-560 < 45 k eta - k^2 eta^2 (about 154 2^-560). So
+//   X + (2^-570, 0, 0), which is strictly behind b's cap plane and moves x^2 by about 45 2^-570,
+//   is interior to both: overlapping.
+//   Quarter: rim_line_tangent_400 of bench_cylinder_wide_range with b's end moved from x = r to
+//   x = -1/4, where b's lowest line crosses a's tilted cap plane beside a's rim at x = -1/4
+//   (answer checked by its certificate only).
+// Both are decided by the candidates (no Gmpfr round, no ellipsoid step), in both orders.
+BOOST_AUTO_TEST_CASE(rims_dipping_below_an_ulp_are_decided_by_the_rim_points_nearest_the_axis) {
+  const auto to_q = [](double x) { return Q(x); };
+  const double r = 0x1.38p-2;
+  const certcyl::Cylinder<double> needle_a{{0, 0, 0}, {0, 0x1p+422, 0}, 22.5};
+  const certcyl::Cylinder<double> needle_b{{0x1p+422, 8.75, 22.5}, {22.5, 22.5, 22.5}, 22.5};
+  {
+    const Q k = Q(55, 4) / (Q(0x1p+422) - Q(45, 2)), eta = Q(0x1p-140), zeta = Q(0x1p-280);
+    const certcyl::Point3<Q> X{Q(45, 2) - k * eta + Q(0x1p-570), Q(45, 2) - eta, zeta};
+    BOOST_REQUIRE(certcyl::detail::strictly_inside_both(
+        certcyl::detail::CylinderPair<Q>::make(needle_a.map(to_q), needle_b.map(to_q)), X));
+  }
+  const certcyl::Cylinder<double> quarter_a{{0, 0, 0x1.8cp+6}, {2, -0x1.01414fb0000fap+401, 0x1.72727275a27d5p-397}, r};
+  const certcyl::Cylinder<double> quarter_b{{r, 0, 0x1.00002p+417}, {-0.25, r, r}, r};
+  const std::vector<std::tuple<const char*, certcyl::Cylinder<double>, certcyl::Cylinder<double>>> pairs = {
+      {"needles", needle_a, needle_b}, {"quarter", quarter_a, quarter_b}};
+  for (const auto& [name, a, b] : pairs) {
+    for (const bool swap : {false, true}) {
+      const certcyl::Cylinder<double>& x = swap ? b : a;
+      const certcyl::Cylinder<double>& y = swap ? a : b;
+      const auto res = certcyl::certified_cylinder_cylinder(x, y);
+      BOOST_TEST_CONTEXT(name << (swap ? ", swapped" : "") << ", stage " << certcyl::to_string(res.stage)) {
+        BOOST_TEST(res.answer == Answer::overlapping);
+        BOOST_TEST(certcyl::recheck::check_cylinder_pair(x.map(to_q), y.map(to_q), res) == "");
+        BOOST_TEST(res.gmpfr_precision == 0);
+        BOOST_TEST(res.counters.ellipsoid_steps == 0u);
+      }
+    }
+  }
+}

@@ -67,8 +67,9 @@
 //                    other, an end's step along its axis sized from its depth in the other,
 //                    points of one tube beside its axis's closest point, points of the line
 //                    where the slabs' mid-planes meet, and points of a cap disk inside the other
-//                    pushed into the cylinder; each checked exactly, in the ring frame when
-//                    there is one), then the corner
+//                    pushed into the cylinder, among them the rim points nearest the other's
+//                    axis line (detail/cylinder_rim_nearest.hpp); each checked exactly, in the
+//                    ring frame when there is one), then the corner
 //                    candidates of detail/cylinder_corner_plane.hpp (the best direction of one
 //                    cylinder's rim wedge in the plane through its axis and the other, and the
 //                    other's deepest point in it, on quantities reduced exactly to the smaller
@@ -133,6 +134,7 @@
 #include "certcyl/certified/detail/cylinder_ellipsoid.hpp"
 #include "certcyl/certified/detail/cylinder_optimiser.hpp"
 #include "certcyl/certified/detail/cylinder_quick_filter.hpp"
+#include "certcyl/certified/detail/cylinder_rim_nearest.hpp"
 #include "certcyl/certified/detail/cylinder_ring_frame.hpp"
 #include "certcyl/certified/detail/cylinder_static_filter.hpp"
 #include "certcyl/certified/detail/cylinder_touching.hpp"
@@ -1565,14 +1567,15 @@ class CylinderCylinderSolver {
     cap_disks_tried_ = true;
     return cap_disk_witness(0, false) || cap_disk_witness(1, false) || cap_disk_witness(0, true) || cap_disk_witness(1, true);
   }
-  // rim: the rim points (they need square roots at the input's span), after the others failed.
+  // rim: the rim points (they need square roots at the input's span, or Gmpfr iterations at twice
+  // it), after the others failed.
   bool cap_disk_witness(int i, bool rim) {
     const auto [ci, cj, Ai, Aj, AAi, AAj] = roles(i);
     const Point3<Rational> mj = cj.p0 + Aj / Rational(2);
     for (const bool far_end : {false, true}) {
       const Point3<Rational>& E = far_end ? ci.p1 : ci.p0;
       const Vec3<Rational> n = far_end ? Vec3<Rational>(-Ai) : Ai;  // into i
-      std::array<std::optional<Point3<Rational>>, 5> Y;
+      std::vector<std::optional<Point3<Rational>>> Y(5);
       const Rational a = dot(Aj, Ai);
       if (!rim && a != 0) Y[0] = cj.p0 + (dot(E - cj.p0, Ai) / a) * Aj;  // j's axis line on the cap plane
       const Vec3<Rational> L = cross(Ai, Aj);
@@ -1606,6 +1609,13 @@ class CylinderCylinderSolver {
         s = s + times_two_power(s, 2 - q);
         Y[3 + j_far] = E + (ci.radius / s) * u;
       }
+      // The points of i's rim nearest j's axis line (detail/cylinder_rim_nearest.hpp): where a cap
+      // disk tilted far below an ulp against j's wall, or a wall grazing i's cap plane beside the
+      // rim, dips into j. At twice the input's span plus 128 bits: such a dip is about 2^-(4/3 s)
+      // deep in the numbers spanning s binades of the pairs found by the fuzz harness.
+      if (rim)
+        for (Point3<Rational>& y : rim_points_nearest_line(E, Ai, ci.radius, cj.p0, Aj, cj.radius, 2 * input_span_bits() + 128))
+          Y.emplace_back(std::move(y));
       const Rational& ri = ci.radius;  // plain references: clang before 16 cannot capture structured bindings
       const Rational& AAi_ = AAi;
       const auto try_point = [&](const Point3<Rational>& y, const std::optional<long>& depth) {
