@@ -319,5 +319,33 @@ if [[ $status == 0 && $(cat "$work/big_scene.out") == "1000001 True" ]]; then
   pass "make-scene --cylinders 1000000 under ulimit -v 128 MiB: every cylinder written"
 else fail "make-scene under ulimit -v: status $status, $(cat "$work/big_scene.out") $(head -c 300 "$work/big_scene.err")"; fi
 
+# 17. A study ended by SIGTERM while a CORE::Expr call runs in its child process: exit 143, no
+# results folder (only the hidden partial one), no child left behind; a re-run under the same
+# name starts clean and finishes. (SIGTERM, not SIGINT: a background job of a non-interactive
+# shell starts with SIGINT ignored.)
+echo '{"per_family": 2000, "map_cells": 2, "hunt_evaluations": 1, "methods": ["eberly_cylinders/core_expr"]}' > "$work/core_config.json"
+"$certcyl" study --config "$work/core_config.json" --out "$work/ri" --name int --no-plots --no-progress > /dev/null 2> "$work/ri.err" &
+pid=$!
+children=0
+for ((k = 0; k < 600 && children == 0; ++k)); do
+  sleep 0.1
+  kill -0 $pid 2> /dev/null || break
+  children=$(pgrep -P $pid | wc -l)
+done
+kill -TERM $pid 2> /dev/null
+wait $pid
+status=$?
+sleep 0.5
+left=$(pgrep -f "$work/core_config.json" | wc -l)
+if [[ $children -gt 0 && $status == 143 && ! -e $work/ri/int && -d $work/ri/.int.partial && $left == 0 ]]; then
+  pass "SIGTERM during a study's child call: exit 143, no results folder, no child left"
+else fail "SIGTERM during a study's child call: children $children, status $status, folders $(ls -A "$work/ri" 2> /dev/null | tr '\n' ' '), left $left"; fi
+echo '{"per_family": 1, "map_cells": 2, "hunt_evaluations": 1, "methods": ["robust/double"]}' > "$work/rerun_config.json"
+"$certcyl" study --config "$work/rerun_config.json" --out "$work/ri" --name int --no-plots --no-progress > /dev/null 2> "$work/ri.err"
+status=$?
+if [[ $status == 0 && -f $work/ri/int/manifest.json && ! -e $work/ri/.int.partial && ! -e $work/ri/int/Core_Diagnostics ]]; then
+  pass "a study re-run after the interruption starts clean"
+else fail "study re-run after the interruption: status $status, $(ls -A "$work/ri" "$work/ri/int" 2> /dev/null | tr '\n' ' ') $(head -c 300 "$work/ri.err")"; fi
+
 echo "$failures failure(s)"
 [[ $failures == 0 ]]
