@@ -1135,11 +1135,6 @@ class CylinderCylinderSolver {
   // checks are homogeneous in the lengths and in the direction), without Gmpq's gcds. nullptr
   // when there is no such frame (binary64 input whose world frame is not exact, rational input
   // whose L is too large): the checks are then made in Gmpq.
-  // The ring frame when it is the world frame itself (binary64 input with an exact world frame):
-  // a world double is then a ring number as it stands, and the exact checks of the double stages
-  // run in Mpzf, without building the Gmpq pair (its gcds cost some 20 us a check on rotated and
-  // rounded input).
-  const RingFrame* world_ring() { return binary64_ && world_exact_ ? ring() : nullptr; }
   const RingFrame* ring() {
     if (!ring_tried_) {
       ring_tried_ = true;
@@ -1154,6 +1149,11 @@ class CylinderCylinderSolver {
     }
     return ring_ ? &*ring_ : nullptr;
   }
+  // The ring frame when it is the world frame itself (binary64 input with an exact world frame):
+  // a world double is then a ring number as it stands, and the exact checks of the double stages
+  // run in Mpzf, without building the Gmpq pair (its gcds cost some 20 us a check on rotated and
+  // rounded input).
+  const RingFrame* world_ring() { return binary64_ && world_exact_ ? ring() : nullptr; }
   template <class QD>
   static CGAL::Mpzf to_mpzf(const QD& x) {
     CGAL::Mpzf m(x.x[0]);
