@@ -52,10 +52,10 @@ inline std::vector<Point3<Rational>> rim_points_nearest_line(const Point3<Ration
   using F = CGAL::Gmpfr;
   std::vector<Point3<Rational>> out;
   const auto f = [](const Rational& q) { return nt::from_rational<F>(q); };
-  const auto fv = [&f](const Vec3<Rational>& q) { return Vec3<F>(f(q.x), f(q.y), f(q.z)); };
+  const auto fv = [&f](const Vec3<Rational>& q) { return Vec3<F>{f(q.x), f(q.y), f(q.z)}; };
   // u: A_i x e_k for the axis e_k of A_i's smallest component; v = A_i x u; both normalised.
   const Rational ax = abs(Ai.x), ay = abs(Ai.y), az = abs(Ai.z);
-  const Vec3<Rational> e = ax <= ay && ax <= az ? Vec3<Rational>(1, 0, 0) : ay <= az ? Vec3<Rational>(0, 1, 0) : Vec3<Rational>(0, 0, 1);
+  const Vec3<Rational> e = ax <= ay && ax <= az ? Vec3<Rational>{1, 0, 0} : ay <= az ? Vec3<Rational>{0, 1, 0} : Vec3<Rational>{0, 0, 1};
   const Vec3<Rational> U = cross(Ai, e), V = cross(Ai, U), EP = E - p;
   struct Frame {
     Vec3<F> u, v, a0, a1, a2;
@@ -185,7 +185,7 @@ inline std::vector<Point3<Rational>> rim_points_nearest_line(const Point3<Ration
   const auto keep = [&](const Angle& a) {
     if (!(derivatives_at(a)[1] > 0)) return;
     const Vec3<F> x = (u * a.c + v * a.s) * rf;
-    out.push_back(E + Vec3<Rational>(to_rational(x.x), to_rational(x.y), to_rational(x.z)));
+    out.push_back(E + Vec3<Rational>{to_rational(x.x), to_rational(x.y), to_rational(x.z)});
   };
   for (const double t0 : starts) {
     Angle start{F(std::cos(t0), precision), F(std::sin(t0), precision)};
