@@ -14,8 +14,17 @@ and paper/ share.
                           it is missing or malformed
   fnum(s)                 a CSV field as a float, NaN when empty
   wilson(k, n)            the 95% Wilson score interval of k successes in n trials
+  error_interval(k, n)    the same with its ends exact: 0 when k is 0, 1 when k is n
+  percent_text(p)         a proportion in percent, two significant digits ("0", "0.41", "37", "100")
   upper_median, percentile
   OUTCOMES, FAILURES      the study's outcome names; those counted as failures (FP + FN)
+  DECIDED                 the outcomes of a decided answer (agree, FP, FN, class mismatch)
+  Errors                  decided answers and wrong ones (FP, FN, class mismatches) of a set of
+                          instance rows: the Boolean error rate (FP + FN) / decided and the
+                          three-valued one (FP + FN + class) / decided, each with its Wilson interval
+  boolean_methods(rows)   the methods that answered `intersecting` (no three-valued answer)
+  K_BINS, k_bin(k)        the bins of k_ulps (k = 0, then four binades a bin) and a value's bin
+  errors_by_k(rows)       (query, method) -> one Errors per bin of K_BINS, hard-case families only
   split_method(m)         "shene_as_written/double" -> ("shene_as_written", "double")
   method_label(m)         the same for a reader: "shene (as written), double"
   QUERY_TITLES            query name -> short title
@@ -33,6 +42,8 @@ READ = []  # every file read through read_csv or note_read, in order
 
 OUTCOMES = ("agree", "false_positive", "false_negative", "class_mismatch", "undecided", "error", "invalid", "uncertified")
 FAILURES = ("false_positive", "false_negative")
+# A decided answer: the method gave one (not undecided, error or invalid) on a certified instance.
+DECIDED = ("agree", "false_positive", "false_negative", "class_mismatch")
 
 QUERY_TITLES = {
     "line_cylinder": "line",
@@ -138,6 +149,136 @@ def wilson(k, n, z=1.959963984540054):
     centre = (p + z * z / (2 * n)) / denom
     half = z / denom * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
     return max(0.0, centre - half), min(1.0, centre + half)
+
+
+class Errors:
+    """The decided answers of a set of instance rows (outcome in DECIDED) and the wrong ones among
+    them: false positives, false negatives and class mismatches. Two error rates over the same
+    decided answers:
+      Boolean        (FP + FN) / decided: says the sets meet or not, wrongly (the study's
+                     disagreement_rate; summary.csv)
+      three-valued   (FP + FN + class) / decided: the answer is not the certified one of separated,
+                     touching and overlapping; defined for a three-valued method only (a Boolean
+                     method, which answers `intersecting`, gives no touching or overlapping, so
+                     its three-valued error is undefined and shown as a dash, not as 0)
+    A rate with nothing decided is NaN."""
+
+    __slots__ = ("decided", "fp", "fn", "cls")
+
+    def __init__(self):
+        self.decided = self.fp = self.fn = self.cls = 0
+
+    def add(self, outcome):
+        if outcome not in DECIDED:
+            return
+        self.decided += 1
+        self.fp += outcome == "false_positive"
+        self.fn += outcome == "false_negative"
+        self.cls += outcome == "class_mismatch"
+
+    @property
+    def wrong(self):
+        return self.fp + self.fn
+
+    @property
+    def wrong3(self):
+        return self.fp + self.fn + self.cls
+
+    @property
+    def rate(self):
+        return self.wrong / self.decided if self.decided else math.nan
+
+    @property
+    def rate3(self):
+        return self.wrong3 / self.decided if self.decided else math.nan
+
+    @classmethod
+    def pooled(cls, parts):
+        """The Errors of the union of `parts` (Errors of disjoint sets of rows)."""
+        total = cls()
+        for e in parts:
+            total.decided += e.decided
+            total.fp += e.fp
+            total.fn += e.fn
+            total.cls += e.cls
+        return total
+
+    def interval(self, three_valued=False):
+        """The 95% Wilson interval of the Boolean (or the three-valued) error rate."""
+        return error_interval(self.wrong3 if three_valued else self.wrong, self.decided)
+
+
+def boolean_methods(rows):
+    """The methods of `rows` (instances.csv) that answered `intersecting` at least once: Boolean
+    methods, whose three-valued error is not defined."""
+    return {r["method"] for r in rows if r["answer"] == "intersecting"}
+
+
+# The bins of k, the ulps a hard-case instance was moved off its family's degeneracy. The study
+# draws k = 0 for one instance in eight and otherwise +-(2^e + j), e uniform in {0, ..., 40},
+# 0 <= j <= 2^(e-1), so |k| < 2^41: the bins are k = 0, then |k| in [2^(4i), 2^(4i+4)) for
+# i = 0, ..., 8, and |k| >= 2^36 (binades 36 to 40). Each bin is (lowest exponent, exponent above
+# or None when open): (None, None) for k = 0.
+K_BIN_BINADES = 4
+K_BINS = ((None, None),) + tuple((4 * i, 4 * i + 4) for i in range(9)) + ((36, None),)
+
+
+def k_bin(k):
+    """The index into K_BINS of k (a k_ulps field or a number); None when empty."""
+    if k in ("", None):
+        return None
+    k = abs(float(k))
+    if k == 0:
+        return 0
+    e = max(0, math.floor(math.log2(k)))
+    return 1 + min(len(K_BINS) - 2, e // K_BIN_BINADES)
+
+
+def k_bin_label(b, power="2^{}"):
+    """A bin of K_BINS in words: "0", "[2^0, 2^4)", ">= 2^36", the powers written by `power`."""
+    lo, hi = K_BINS[b]
+    if lo is None:
+        return "0"
+    if hi is None:
+        return ">= " + power.format(lo)
+    return f"[{power.format(lo)}, {power.format(hi)})"
+
+
+def errors_by_k(rows):
+    """(query, method) -> a list of one Errors per bin of K_BINS, from the rows of instances.csv
+    of the hard-case families (the uniform family has no degeneracy to be k ulps from, and
+    uncertified instances are judged by no method)."""
+    out = {}
+    for r in rows:
+        if r["family"] == "uniform" or r["outcome"] not in DECIDED:
+            continue
+        b = k_bin(r["k_ulps"])
+        if b is None:
+            continue
+        bins = out.get((r["query"], r["method"]))
+        if bins is None:
+            bins = out[(r["query"], r["method"])] = [Errors() for _ in K_BINS]
+        bins[b].add(r["outcome"])
+    return out
+
+
+def error_interval(k, n):
+    """wilson(k, n) with the bound at an end exact: the lower bound 0 when k is 0 and the upper
+    bound 1 when k is n (the formula leaves a rounding error of about 1e-15 there)."""
+    lo, hi = wilson(k, n)
+    return (0.0 if k == 0 else lo), (1.0 if k == n else hi)
+
+
+def percent_text(p):
+    """A proportion p in [0, 1] in percent with two significant digits, without an exponent: "0",
+    "0.0041", "3.5", "37", "100" (99.5 % and above)."""
+    x = 100.0 * p
+    if x == 0:
+        return "0"
+    if x >= 99.5:
+        return "100"
+    x = float(f"{x:.2g}")  # rounded first, so that 9.996 reads 10, not 10.0
+    return f"{x:.{max(0, 1 - math.floor(math.log10(x)))}f}"
 
 
 def upper_median(values):

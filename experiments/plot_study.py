@@ -19,10 +19,17 @@ Writes PNG and PDF into results/<name>/figures/ (or DIR), each sized to fit a pa
                          instance, and it is kept out of the Pareto front
   gap_rate_overview      disagreement rate against |gap| for the methods in hardware precision,
                          line queries pooled, triangles, cylinder pairs
+  error_by_k             error rate against k (the ulps off a family's degeneracy), binned (k = 0,
+                         then four binades a bin), with 95% Wilson intervals, one panel per query:
+                         the methods in hardware precision with most wrong answers, the Boolean
+                         error (FP + FN) and, where it differs, the three-valued one (+ class)
+  error_by_k.html        the same as a table for every method with a wrong answer (linked from
+                         index.html)
   t_error                line queries: error of the entry parameter t in ulps, one panel per query
                          (median, 90th and 99th percentiles, maximum)
   pareto_t_error         line queries: median ns against the 99th percentile of the t error
   map_<name>             failure maps: each method's answer on the ulp grid, wrong cells marked
+                         (class mismatches, touching for overlapping or the reverse, apart)
   map_compact_<name>     the same with at most 8 panels (methods with identical answers on every
                          cell share a panel), legible at a page's width
   manifest.json          the SHA-256 of every file read (relative to the results folder) and of
@@ -361,7 +368,10 @@ def pareto(summary, out, judged=()):
     save(fig, out, "pareto",
          "One panel per query, one dot per method, coloured by kind: further left is faster, lower is right more often (a rate "
          "of 0 is drawn on the dotted line); the grey staircase joins the methods no other method beats on both speed and error, "
-         "and only those are named." + judged_caption(judged),
+         "and only those are named. A rate pools every instance of the query, so it depends on the study's sampling "
+         "design (k = 0 for one instance in eight, otherwise |k| log-uniform up to 2^41 ulps off a degeneracy): a point's "
+         "height is the share of that design inside the method's precision band (error_by_k shows the error per k); the rate "
+         "is the Boolean one, FP + FN, class mismatches aside." + judged_caption(judged),
          rect=(0, 0.05 + lift, 1, 1))
 
 
@@ -427,7 +437,8 @@ def pareto_compact(summary, out, judged=()):
     bottom_legend(fig, algo_handles + nt_handles, 6.2, lift)
     save(fig, out, "pareto_compact",
          "The same speed against error without the sweeps and the extra MPFR precisions: colour is the algorithm, marker the "
-         "number type (hollow: a peer library's variant), so the cost of each number type reads along a colour."
+         "number type (hollow: a peer library's variant), so the cost of each number type reads along a colour. As on "
+         "pareto, the rate (Boolean, FP + FN) depends on the study's sampling design of k (error_by_k)."
          + judged_caption(judged),
          rect=(0, 0.1 + lift, 1, 1), dpi=150)
 
@@ -481,6 +492,95 @@ def gap_rate_overview(rows, out):
          "wrong answers against the size of the certified gap in powers of ten, both sides pooled; a method's line falls to 0 "
          "once the input is far enough from a degeneracy for its precision.",
          dpi=150)
+
+
+ERROR_BY_K_METHODS = 4  # per panel of error_by_k
+ERROR_BY_K_NTS = ("double", "long_double", "float")
+
+
+def error_by_k_methods(by_k, kinds, query):
+    """The methods of error_by_k's panel for `query`: in hardware precision (ERROR_BY_K_NTS), not
+    certified, no sweep and no seed as written (whose slips are algorithmic, wrong at every k),
+    with a wrong answer (Boolean or three-valued) on the hard-case families, the
+    ERROR_BY_K_METHODS with most wrong answers (three-valued) first."""
+    cand = []
+    for (q, m), bins in by_k.items():
+        base, nt = cr.split_method(m)
+        if q != query or nt not in ERROR_BY_K_NTS or kinds.get(m) in ("certified", "sweep", "seed_as_written"):
+            continue
+        wrong3 = sum(b.wrong3 for b in bins)
+        if wrong3:
+            cand.append((-wrong3, m))
+    return [m for _, m in sorted(cand)[:ERROR_BY_K_METHODS]]
+
+
+def k_tick(b):
+    lo, hi = cr.K_BINS[b]
+    return "0" if lo is None else (f"$2^{{{lo}}}$+" if hi is None else f"$2^{{{lo}}}$")
+
+
+def error_by_k(rows, out):
+    """Error rate against k, the ulps an instance was moved off its family's degeneracy, with
+    95% Wilson intervals: one panel per query."""
+    by_k = cr.errors_by_k(rows)
+    boolean = cr.boolean_methods(rows)
+    kinds = {r["method"]: r["kind"] for r in rows}
+    queries = [q for q in QUERY_TITLES if any(k[0] == q for k in by_k)]
+    if not queries:
+        return by_k, boolean
+    cols = 2 if len(queries) > 1 else 1
+    rn = math.ceil(len(queries) / cols)
+    fig, axes = plt.subplots(rn, cols, figsize=(PAGE_WIDTH, 2.15 * rn + 0.6), sharey=True, squeeze=False)
+    nb = len(cr.K_BINS)
+    for ax, q in zip(axes.flat, queries):
+        methods = error_by_k_methods(by_k, kinds, q)
+        for i, m in enumerate(methods):
+            colour = plt.get_cmap("tab10")(i % 10)
+            shift = (i - (len(methods) - 1) / 2) * 0.12
+            bins = by_k[(q, m)]
+            series = [(False, "-", "o", colour)]
+            if m not in boolean and any(b.cls for b in bins):
+                series.append((True, "--", "s", "none"))
+            for three, ls, marker, face in series:
+                xs, ys, lo, hi = [], [], [], []
+                for b, e in enumerate(bins):
+                    if not e.decided:
+                        continue
+                    r = e.rate3 if three else e.rate
+                    a, z = e.interval(three)
+                    xs.append(b + shift + (0.045 if three else 0))
+                    ys.append(r)
+                    lo.append(max(0.0, r - a))  # the Wilson interval holds r, up to rounding
+                    hi.append(max(0.0, z - r))
+                if xs:
+                    ax.errorbar(xs, ys, yerr=[lo, hi], color=colour, ls=ls, lw=0.7, marker=marker, ms=3, mfc=face,
+                                elinewidth=0.6, capsize=1.5, alpha=0.85,
+                                label=cr.method_label(m) + (" (three-valued)" if three else ""))
+        ax.set_xticks(range(nb), [k_tick(b) for b in range(nb)], fontsize=6)
+        ax.set_xlim(-0.5, nb - 0.5)
+        ax.set_ylim(-0.03, 1.03)
+        ax.set_title(QUERY_TITLES[q], fontsize=7.5)
+        ax.tick_params(axis="y", labelsize=6)
+        ax.grid(alpha=0.3)
+        if methods:
+            ax.legend(fontsize=5.5, loc="upper left", bbox_to_anchor=(1.0, 1.0), frameon=False, borderaxespad=0.3)
+        else:
+            ax.text(0.5, 0.5, "no wrong answer in hardware precision", transform=ax.transAxes, ha="center", fontsize=6)
+    for ax in list(axes.flat)[len(queries):]:
+        ax.axis("off")
+    for ax in axes[:, 0]:
+        ax.set_ylabel("error rate", fontsize=7)
+    fig.supxlabel("|k|, ulps off the family's degeneracy (bin: from the power shown to the next one shown)", fontsize=7)
+    save(fig, out, "error_by_k",
+         "One panel per query: the error rate of the methods in hardware precision with most wrong answers (at most "
+         f"{ERROR_BY_K_METHODS}; seeds as written, sweeps and the certified query left out) against |k|, the ulps the hard-case instance was moved off its family's degeneracy, in bins of "
+         "k = 0 and four binades (the last from 2^36 up), with 95% Wilson intervals; solid: the Boolean error (FP + FN) over "
+         "the decided answers; dashed with hollow markers, for a three-valued method with class mismatches: the three-valued "
+         "error (FP + FN + class mismatches). The study draws k = 0 for one instance in eight and |k| log-uniform up to 2^41, "
+         "so a single rate over all instances is this curve averaged over that design. Uniform random instances are left "
+         "out; the table of every method is error_by_k.html.",
+         rect=(0, 0.02, 1, 1), dpi=150)
+    return by_k, boolean
 
 
 T_ERROR_MARKS = (("median", 50, "tab:blue", "o"), ("90th percentile", 90, "tab:green", "^"),
@@ -566,6 +666,11 @@ CODE_NAMES = ["separated", "touching", "overlapping", "intersecting", "undecided
 # A wrong cell is drawn opaque in this one colour, whatever the method answered there.
 WRONG_COLOUR = "#ff00ff"
 WRONG_LABEL = "wrong: meets where the certified answer is separated, or the reverse"
+# A class mismatch (a three-valued method says touching where the certified answer is
+# overlapping, or the reverse) in its own colour: right as a Boolean answer, wrong as a
+# three-valued one.
+CLASS_COLOUR = "#00d8d8"
+CLASS_LABEL = "class mismatch: touching for overlapping, or the reverse"
 
 
 def meets(c):
@@ -575,29 +680,35 @@ def meets(c):
 def map_legend(fig, fontsize):
     handles = [plt.Line2D([], [], color=c, marker="s", ls="", label=l) for c, l in zip(CODE_COLOURS, CODE_NAMES)]
     handles.append(plt.Line2D([], [], color=WRONG_COLOUR, marker="s", ls="", label=WRONG_LABEL))
+    handles.append(plt.Line2D([], [], color=CLASS_COLOUR, marker="s", ls="", label=CLASS_LABEL))
     fig.legend(handles=handles, loc="lower center", ncol=4, fontsize=fontsize, frameon=False)
 
 
-def draw_map(ax, code, bad, extent=None):
+def draw_map(ax, code, bad, extent=None, cls=None):
     """An answer per cell (code: index into CODES, masked where not evaluated), wrong cells in
-    WRONG_COLOUR on top."""
+    WRONG_COLOUR and class mismatches (cls) in CLASS_COLOUR on top."""
     ax.imshow(code, cmap=ListedColormap(CODE_COLOURS), vmin=-0.5, vmax=len(CODES) - 0.5, origin="lower",
               interpolation="nearest", extent=extent)
-    if bad.any():
-        ax.imshow(np.ma.masked_where(~bad, np.ones(bad.shape)), cmap=ListedColormap([WRONG_COLOUR]), origin="lower",
-                  interpolation="nearest", extent=extent)
+    for mask, colour in ((bad, WRONG_COLOUR), (cls, CLASS_COLOUR)):
+        if mask is not None and mask.any():
+            ax.imshow(np.ma.masked_where(~mask, np.ones(mask.shape)), cmap=ListedColormap([colour]), origin="lower",
+                      interpolation="nearest", extent=extent)
     ax.set_xticks([])
     ax.set_yticks([])
 
 
 def wrong_counts(sub, sub_cert, evaluated):
-    """False positives (the method meets, the certified answer is separated) and false
-    negatives (the reverse) among the evaluated cells, undecided and error cells aside."""
+    """False positives (the method meets, the certified answer is separated), false negatives
+    (the reverse) and class mismatches (the method answers touching where the certified answer
+    is overlapping, or the reverse; a Boolean method's `intersecting` is none) among the
+    evaluated cells, undecided and error cells aside: three boolean masks."""
     meets_code = np.array([meets(c) for c in CODES])
     decided = evaluated & (sub != CODES.index("u")) & (sub != CODES.index("e"))
     m = meets_code[np.clip(sub, 0, None)]
     c = meets_code[np.clip(sub_cert, 0, None)]
-    return decided & m & ~c, decided & ~m & c
+    t, o = CODES.index("t"), CODES.index("o")
+    cls = decided & (((sub == t) & (sub_cert == o)) | ((sub == o) & (sub_cert == t)))
+    return decided & m & ~c, decided & ~m & c, cls
 
 
 def failure_maps(folder, out):
@@ -637,18 +748,21 @@ def failure_maps(folder, out):
             sub = code[np.ix_(sel, sel)]
             sub_cert = cert[np.ix_(sel, sel)]
             evaluated = sub >= 0
-            fp, fn = wrong_counts(sub, sub_cert, evaluated)
+            fp, fn, cls = wrong_counts(sub, sub_cert, evaluated)
             if m == "certified":
                 fp[:] = False
                 fn[:] = False
+                cls[:] = False
             lo = np.nonzero(sel)[0]
             extent = (lo[0] - s / 2, lo[-1] + s / 2, lo[0] - s / 2, lo[-1] + s / 2)
-            draw_map(ax, np.ma.masked_where(~evaluated, sub), fp | fn, extent)
+            draw_map(ax, np.ma.masked_where(~evaluated, sub), fp | fn, extent, cls)
             ax.set_xlim(-0.5, n - 0.5)
             ax.set_ylim(-0.5, n - 0.5)
             base, _, nt = m.partition("/")
             every = "" if s == 1 else f", step {s}"
-            counts = "" if m == "certified" else f"\n{int(fp.sum())} FP, {int(fn.sum())} FN{every}"
+            # A Boolean method (it answers intersecting) has no class mismatch to count.
+            classes = "" if (sub == CODES.index("i")).any() else f", {int(cls.sum())} cl."
+            counts = "" if m == "certified" else f"\n{int(fp.sum())} FP, {int(fn.sum())} FN{classes}{every}"
             ax.set_title(f"{base}\n{nt}{counts}", fontsize=4.8, linespacing=1.05)
         for ax in list(axes.flat)[len(methods):]:
             ax.axis("off")
@@ -661,7 +775,9 @@ def failure_maps(folder, out):
              f"Failure map around one degenerate configuration ({desc}): each panel is a method's answer on a grid of inputs "
              f"{step} ulp apart in two coordinates, coloured by answer as the certified panel (first) is; magenta cells are wrong "
              "(the method says the sets meet where the certified answer is separated, or the reverse) and the title counts them "
-             "as false positives (FP) and false negatives (FN).",
+             "as false positives (FP) and false negatives (FN); cyan cells are class mismatches (touching answered where the "
+             "certified answer is overlapping, or the reverse: right as a Boolean answer, wrong as a three-valued one), counted "
+             "as cl. (not for a Boolean method, which answers intersecting).",
              tight=False)
         map_compact(rows, [m for m in methods if int(strides.get(m, 1)) == 1], n, name[:-4], desc, out)
 
@@ -695,20 +811,23 @@ def map_compact(rows, methods, n, name, desc, out):
         m = p[0]
         img = np.zeros((n, n), dtype=int)
         img[jj, ii] = [CODES.index(c) for c in columns[m]]
-        fp, fn = wrong_counts(img, cert, np.ones((n, n), dtype=bool))
+        fp, fn, cls = wrong_counts(img, cert, np.ones((n, n), dtype=bool))
         if m == "certified":
             fp[:] = False
             fn[:] = False
-        draw_map(ax, img, fp | fn)
+            cls[:] = False
+        draw_map(ax, img, fp | fn, cls=cls)
         label = "\n".join(p[:2]) + (f" (+{len(p) - 2})" if len(p) > 2 else "")
-        ax.set_title(label + ("" if m == "certified" else f"\n{int(fp.sum())} FP, {int(fn.sum())} FN"), fontsize=6.5)
+        classes = "" if (img == CODES.index("i")).any() else f", {int(cls.sum())} class"  # none for a Boolean method
+        ax.set_title(label + ("" if m == "certified" else f"\n{int(fp.sum())} FP, {int(fn.sum())} FN{classes}"), fontsize=6.5)
     for ax in list(axes.flat)[len(panels):]:
         ax.axis("off")
     map_legend(fig, 6.5)
     save(fig, out, f"map_compact_{name}",
          f"The failure map of {desc} in at most 8 panels: the certified answer first, then one panel per distinct answer "
          "pattern (methods with the same answer on every cell share a panel, the title names the first two); magenta cells are "
-         "wrong, counted in the title as false positives (FP) and false negatives (FN).",
+         "wrong, counted in the title as false positives (FP) and false negatives (FN); cyan cells are class mismatches "
+         "(touching for overlapping or the reverse), counted as class for a three-valued method.",
          rect=(0, 0.08, 1, 1), dpi=150)
 
 
@@ -720,7 +839,7 @@ h1 { font-size: 1.5em; } h2 { font-size: 1.25em; border-bottom: 1px solid #ccc; 
 table { border-collapse: collapse; font-size: 0.8em; margin: 0.5em 0 1em; }
 th, td { border: 1px solid #ccc; padding: 0.15em 0.5em; text-align: left; }
 th { background: #eee; } td.num, th.num { text-align: right; font-variant-numeric: tabular-nums; }
-tr.wrong td { background: #fde0e0; } tr.certified td { font-weight: bold; }
+tr.wrong td { background: #fde0e0; } tr.mismatch td { background: #dff4f4; } tr.certified td { font-weight: bold; }
 figure { margin: 1.5em 0; } figure img { max-width: 100%; border: 1px solid #ddd; }
 figcaption { max-width: 50em; font-size: 0.9em; } pre { font-size: 0.75em; overflow-x: auto; background: #f6f6f6; padding: 0.5em; }
 .note { color: #555; font-size: 0.9em; }
@@ -728,19 +847,79 @@ figcaption { max-width: 50em; font-size: 0.9em; } pre { font-size: 0.75em; overf
 
 SUMMARY_COLUMNS = (("method", "method"), ("kind", "kind"), ("n", "n"), ("FP", "false_positive"), ("FN", "false_negative"),
                    ("class", "class_mismatch"), ("undecided", "undecided"), ("error", "error"), ("invalid", "invalid"),
-                   ("rate", "disagreement_rate"), ("median ns", "median_ns"))
+                   ("rate", "disagreement_rate"), ("3-val. rate", "three_valued_rate"), ("median ns", "median_ns"))
 
 
-def summary_cell(key, value):
+def summary_cell(key, r, boolean):
+    """The cell of column `key` of the summary row r; the three-valued rate, (FP + FN + class) /
+    decided (cr.Errors), computed from the row's counts, a dash for a Boolean method."""
+    if key == "three_valued_rate":
+        if r["method"] in boolean:
+            return "--"
+        decided = int(r["n"]) - int(r["undecided"]) - int(r["error"]) - int(r["invalid"])
+        wrong3 = int(r["false_positive"]) + int(r["false_negative"]) + int(r["class_mismatch"])
+        return f"{wrong3 / decided:.2e}" if decided else f"{0.0:.2e}"
     if key == "disagreement_rate":
-        return f"{fnum(value):.2e}"
+        return f"{fnum(r[key]):.2e}"
     if key == "median_ns":
-        return f"{fnum(value):.0f}"
-    return value
+        return f"{fnum(r[key]):.0f}"
+    return r[key]
 
 
-def write_index(folder, out, summary):
-    """index.html: the summary table, then every figure written, each with its caption."""
+def k_cell(e, three_valued=False):
+    """A bin of the error-by-k table: wrong / decided and the 95% Wilson interval in percent."""
+    if not e.decided:
+        return ""
+    lo, hi = e.interval(three_valued)
+    return f"{e.wrong3 if three_valued else e.wrong}/{e.decided} [{cr.percent_text(lo)}, {cr.percent_text(hi)}]%"
+
+
+def write_error_by_k(out, by_k, boolean, kinds):
+    """error_by_k.html beside the figures: per query, every method with a wrong answer on the
+    hard-case families, its errors per bin of k with their Wilson intervals (the Boolean error,
+    and for a three-valued method with class mismatches the three-valued error on a second row).
+    Returns its path."""
+    path = os.path.join(out, "error_by_k.html")
+    header = ["method", "error"] + [cr.k_bin_label(b) for b in range(len(cr.K_BINS))] + ["all k"]
+    html = ["<!DOCTYPE html>", '<html lang="en">', "<head>", '<meta charset="utf-8">', "<title>certcyl study: errors against k</title>",
+            f"<style>{STYLE}</style>", "</head>", "<body>", "<h1>Errors against k</h1>",
+            "<p>Each hard-case instance is a degenerate configuration with one input coordinate moved by k ulps; the study draws "
+            "k = 0 for one instance in eight and otherwise &plusmn;(2<sup>e</sup> + j), e uniform in 0..40, so a method's single "
+            "error rate (summary.csv) is mostly the share of that design inside its precision band. Here the errors per bin of "
+            "|k| (k = 0, then four binades a bin, the last open): wrong answers / decided answers and the 95% Wilson interval of "
+            "the rate in percent. Boolean: false positives + false negatives; three-valued (second row, for a three-valued method "
+            "with class mismatches): false positives + false negatives + class mismatches (touching answered for overlapping, or "
+            "the reverse). Uniform random instances are left out; methods without a wrong answer on the families are left out "
+            "(every bin 0/n), and so are the certified query and the sweeps.</p>"]
+    queries = [q for q in QUERY_TITLES if any(k[0] == q for k in by_k)] + sorted({q for q, _ in by_k} - set(QUERY_TITLES))
+    numeric = tuple(header[2:])
+    for q in queries:
+        rows, classes = [], []
+        methods = sorted((m for qq, m in by_k if qq == q and kinds.get(m) not in ("certified", "sweep")),
+                         key=lambda m: (m.split("/")[0], m))
+        for m in methods:
+            bins = by_k[(q, m)]
+            total = cr.Errors.pooled(bins)
+            if not total.wrong3:
+                continue
+            rows.append([m, "Boolean"] + [k_cell(e) for e in bins] + [k_cell(total)])
+            classes.append("wrong" if total.wrong else "")
+            if total.cls and m not in boolean:
+                rows.append([m, "three-valued"] + [k_cell(e, True) for e in bins] + [k_cell(total, True)])
+                classes.append("mismatch")
+        html.append(f'<h2 id="k-{escape(q, quote=True)}">{escape(q)} ({escape(QUERY_TITLES.get(q, q))})</h2>')
+        html.append(cr.html_table(header, rows, classes, numeric) if rows else "<p>No method made a wrong answer.</p>")
+    html += ["</body>", "</html>", ""]
+    with open(path, "w") as f:
+        f.write("\n".join(html))
+    WRITTEN.append(path)
+    return path
+
+
+def write_index(folder, out, summary, boolean=frozenset(), error_by_k_page=None):
+    """index.html: the summary table, then every figure written, each with its caption; links to
+    error_by_k_page (the errors per bin of k) when given. `boolean`: the methods whose
+    three-valued rate is undefined (cr.boolean_methods)."""
     path = os.path.join(folder, "index.html") if os.path.normpath(out) == os.path.normpath(os.path.join(folder, "figures")) \
         else os.path.join(out, "index.html")
     here = os.path.dirname(os.path.abspath(path))
@@ -770,19 +949,26 @@ def write_index(folder, out, summary):
     html.append("<p>One row per query and method (<code>summary.csv</code>): the instances judged (n), the answers that "
                 "disagree with the certified one (FP: says the sets meet, they are separated; FN: the reverse), touching and "
                 "overlapping confused (class), undecided answers, errors and invalid values (a reported value not finite), "
-                "the disagreement rate (FP + FN) / decided answers, and the median time per query. Rows with a false positive "
-                "or a false negative are shaded.</p>")
+                "the disagreement rate (FP + FN) / decided answers (the Boolean error), the three-valued error rate (FP + FN + "
+                "class) / decided answers (a dash for a Boolean method, which never answers touching or overlapping), and the "
+                "median time per query. Rows with a false positive or a false negative are shaded red, rows with class "
+                "mismatches only cyan. Each rate pools every instance of the query, and the study's design (k = 0 for one "
+                "instance in eight, otherwise |k| log-uniform up to 2^41 ulps off a degeneracy) sets how many fall inside a "
+                "method's precision band: the rate is a property of that design, not of the method alone.</p>")
+    if error_by_k_page:
+        html.append(f'<p>The errors per bin of k, with 95% Wilson intervals, for every method with a wrong answer: '
+                    f'<a href="{link(error_by_k_page)}">error_by_k.html</a> (figure <a href="#error_by_k">error_by_k</a>).</p>')
     by_query = defaultdict(list)
     for r in summary:
         by_query[r["query"]].append(r)
     order = [q for q in QUERY_TITLES if q in by_query] + sorted(set(by_query) - set(QUERY_TITLES))
-    numeric = ("n", "FP", "FN", "class", "undecided", "error", "invalid", "rate", "median ns")
+    numeric = ("n", "FP", "FN", "class", "undecided", "error", "invalid", "rate", "3-val. rate", "median ns")
     for q in order:
         rows = by_query[q]
         html.append(f'<h3 id="summary-{escape(q, quote=True)}">{escape(q)} ({escape(QUERY_TITLES.get(q, q))})</h3>')
-        cells = [[summary_cell(key, r[key]) for _, key in SUMMARY_COLUMNS] for r in rows]
-        classes = ["certified" if r["kind"] == "certified" else "wrong" if int(r["false_positive"]) + int(r["false_negative"]) else ""
-                   for r in rows]
+        cells = [[summary_cell(key, r, boolean) for _, key in SUMMARY_COLUMNS] for r in rows]
+        classes = ["certified" if r["kind"] == "certified" else "wrong" if int(r["false_positive"]) + int(r["false_negative"])
+                   else "mismatch" if int(r["class_mismatch"]) else "" for r in rows]
         html.append(cr.html_table([h for h, _ in SUMMARY_COLUMNS], cells, classes, numeric))
     tpath = os.path.join(folder, "summary.txt")
     if os.path.exists(tpath):
@@ -857,9 +1043,11 @@ def main():
     pareto(summary, out, judged)
     pareto_compact(summary, out, judged)
     gap_rate_overview(rows, out)
+    by_k, boolean = error_by_k(rows, out)
     t_error(rows, out)
     failure_maps(folder, out)
-    write_index(folder, out, summary)
+    page = write_error_by_k(out, by_k, boolean, {r["method"]: r["kind"] for r in rows})
+    write_index(folder, out, summary, boolean, page)
     cr.write_manifest("experiments/plot_study.py", folder, out, WRITTEN)
     print(f"figures written to {out}")
     return 0

@@ -11,9 +11,13 @@ Fails (exit status 1, one line per problem) when
   - a manifest records a study file (CSV or JSON) whose SHA-256 differs from the file now in
     RESULTS_DIR, or that is missing there (the table or figure is stale);
   - the manifests do not cover the study's main CSV files;
+  - paper.tex does not include the errors against k (REQUIRED_INCLUDES), or a line of
+    generated/tables/error_by_k.tex shows wrong/decided counts other than those recounted here from
+    RESULTS_DIR/instances.csv (per bin of k, hard-case families, Boolean or three-valued);
   - paper.pdf is missing, older than a file it includes, or has an implausible page count
     (pdfinfo), or the LaTeX log reports undefined references or citations.
 """
+import csv
 import json
 import os
 import re
@@ -22,12 +26,56 @@ import sys
 
 # SHA-256 as make_tables.py and plot_study.py record it, from the module the scripts share.
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "experiments"))
-from certcyl_results import sha256  # noqa: E402
+from certcyl_results import K_BINS, k_bin, sha256  # noqa: E402
 
 # The appendix carries the full proofs (completeness, touching, the filters' error bounds): 23 pages
 # at the time of writing; the limit catches a runaway table or figure, not the proofs.
 MIN_PAGES, MAX_PAGES = 6, 30
 REQUIRED_INPUTS = ["instances.csv", "inputs.csv", "summary.csv", "summary_families.csv", "hunt.csv"]
+# What the results section must show: the errors per bin of k (findings on single rates).
+REQUIRED_INCLUDES = ["generated/tables/error_by_k.tex", "figures/error_by_k.pdf"]
+K_TABLE = "generated/tables/error_by_k.tex"
+WRONG = {"boolean": ("false_positive", "false_negative"), "three_valued": ("false_positive", "false_negative", "class_mismatch")}
+
+
+def recount_by_k(instances):
+    """(query, method) -> per bin of K_BINS and then over all k, [decided, Boolean wrong,
+    three-valued wrong], recounted from instances.csv: hard-case families, decided answers."""
+    counts = {}
+    with open(instances, newline="") as f:
+        for r in csv.DictReader(f):
+            o = r["outcome"]
+            if r["family"] == "uniform" or o not in ("agree", "false_positive", "false_negative", "class_mismatch"):
+                continue
+            c = counts.setdefault((r["query"], r["method"]), [[0, 0, 0] for _ in range(len(K_BINS) + 1)])
+            for cell in (c[k_bin(r["k_ulps"])], c[-1]):
+                cell[0] += 1
+                cell[1] += o in WRONG["boolean"]
+                cell[2] += o in WRONG["three_valued"]
+    return counts
+
+
+def check_k_table(path, instances, problems):
+    """Every line of the table after a comment "% error_by_k: QUERY METHOD MEASURE" holds, per bin
+    of k and over all k, the wrong answers over the decided ones that instances.csv gives."""
+    with open(path) as f:
+        lines = f.read().splitlines()
+    counts = recount_by_k(instances)
+    checked = 0
+    for i, line in enumerate(lines):
+        m = re.match(r"^% error_by_k: (\S+) (\S+) (boolean|three_valued)$", line)
+        if not m:
+            continue
+        q, method, measure = m.groups()
+        cells = [c.strip() for c in lines[i + 1].rstrip("\\").split("&")[2:]] if i + 1 < len(lines) else []
+        c = counts.get((q, method))
+        want = ["" if c is None or not cell[0] else f"{cell[2 if measure == 'three_valued' else 1]}/{cell[0]}"
+                for cell in (c or [[0, 0, 0]] * (len(K_BINS) + 1))]
+        if cells != want:
+            problems.append(f"{K_TABLE}: {q} {method} {measure}: shows {' '.join(cells)}, instances.csv gives {' '.join(want)}")
+        checked += 1
+    if not checked:
+        problems.append(f"{K_TABLE}: no line of counts")
 
 
 def included_files(tex):
@@ -53,6 +101,11 @@ def main():
     files = included_files(tex)
     if not files:
         problems.append("paper.tex includes no generated file")
+    for rel in REQUIRED_INCLUDES:
+        if rel not in files:
+            problems.append(f"paper.tex does not include {rel}")
+    if os.path.exists(os.path.join(out, K_TABLE)) and os.path.exists(os.path.join(res, "instances.csv")):
+        check_k_table(os.path.join(out, K_TABLE), os.path.join(res, "instances.csv"), problems)
 
     # The manifests of the two generators, keyed by the subdirectory they describe.
     manifests = {}

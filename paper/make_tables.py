@@ -22,6 +22,7 @@ from collections import Counter, defaultdict
 # The helpers the scripts of experiments/ and paper/ share (reading CSV files and recording them
 # for the manifest, SHA-256, medians and percentiles).
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "experiments"))
+import certcyl_results as cr  # noqa: E402
 from certcyl_results import fnum, note_read, percentile, read_csv, upper_median, write_manifest  # noqa: E402
 
 WRITTEN = []
@@ -93,6 +94,14 @@ def pct(a, b):
     return f"{100.0 * a / b:.1f}\\,\\%" if b else "--"
 
 
+def pct_rate(r):
+    """A rate in percent for a table cell, two significant digits; a dash for None (no
+    three-valued error: a Boolean method)."""
+    if r is None or (isinstance(r, float) and math.isnan(r)):
+        return "--"
+    return cr.percent_text(r)
+
+
 def method_tex(m):
     """A method name for tables: algorithm in roman, number type in typewriter."""
     base, _, nt = m.partition("/")
@@ -127,11 +136,15 @@ class Numbers:
 # ---- aggregation ------------------------------------------------------------------------------
 
 class Tally:
+    """A method's instances (over all queries, or one): judged (n), the outcomes, the times, and
+    whether it is Boolean (answered `intersecting`: no three-valued error, cr.Errors)."""
+
     def __init__(self):
-        self.n = self.fp = self.fn = self.cls = self.undec = self.err = 0
+        self.n = self.fp = self.fn = self.cls = self.undec = self.err = self.inv = 0
         self.ns = []
         self.queries = set()
         self.kind = ""
+        self.boolean = False
 
     def add(self, r):
         self.kind = r["kind"]
@@ -145,15 +158,25 @@ class Tally:
         self.cls += o == "class_mismatch"
         self.undec += o == "undecided"
         self.err += o == "error"
+        self.inv += o == "invalid"
+        self.boolean |= r["answer"] == "intersecting"
         self.ns.append(fnum(r["ns"]))
 
     @property
     def decided(self):
-        return self.n - self.undec - self.err
+        return self.n - self.undec - self.err - self.inv
 
     @property
     def rate(self):
+        """The Boolean error rate, (FP + FN) / decided (summary.csv's disagreement_rate)."""
         return (self.fp + self.fn) / self.decided if self.decided else 0.0
+
+    @property
+    def rate3(self):
+        """The three-valued error rate, (FP + FN + class) / decided; None for a Boolean method."""
+        if self.boolean:
+            return None
+        return (self.fp + self.fn + self.cls) / self.decided if self.decided else 0.0
 
 
 SEED_BASES = [
@@ -168,6 +191,16 @@ NTS = [("double", "double"), ("long_double", "long dbl."), ("interval", "interva
        ("gmpfr<24>", "MPFR 24"), ("gmpfr<53>", "MPFR 53"), ("gmpfr<113>", "MPFR 113"),
        ("gmpfr<256>", "MPFR 256"), ("core_expr", "CORE")]
 HUNT_ROWS = 18
+# The methods of the table of errors against k (tables/error_by_k.tex), per query: those the
+# results section discusses, in the order shown; a method the study did not run is left out.
+K_TABLE_METHODS = [
+    ("line_cylinder", ["robust/double", "shene/double", "gullotti/double", "shene/long_double"]),
+    ("ray_cylinder", ["shene/double", "bullet/float"]),
+    ("segment_cylinder", ["shene/double"]),
+    ("line_elliptic_cylinder", ["gullotti_as_written/double", "gullotti/double"]),
+    ("triangle_cylinder", ["eberly_triangle/double", "ode_mesh/double"]),
+    ("cylinder_cylinder", ["eberly_cylinders_as_written/double", "eberly_cylinders/double", "fcl/double", "bullet/float"]),
+]
 QUERY_TEX = {
     "line_cylinder": "line", "ray_cylinder": "ray", "segment_cylinder": "segment",
     "line_elliptic_cylinder": "line/elliptic", "triangle_cylinder": "triangle",
@@ -279,10 +312,12 @@ def main():
         N[f"fp:{m}"] = str(t.fp)
         N[f"fn:{m}"] = str(t.fn)
         N[f"wrong:{m}"] = str(t.fp + t.fn)
+        N[f"wrong3:{m}"] = str(t.fp + t.fn + t.cls)
         N[f"cls:{m}"] = str(t.cls)
         N[f"undec:{m}"] = str(t.undec)
         N[f"err:{m}"] = str(t.err)
         N[f"rate:{m}"] = sci(t.rate)
+        N[f"rate3:{m}"] = sci(t.rate3)
         N[f"ns:{m}"] = ns_text(upper_median(t.ns))
         N[f"q:{m}"] = str(len(t.queries))
         N[f"maxwronggap:{m}"] = sci(wrong_gap.get(m, 0.0))
@@ -294,6 +329,7 @@ def main():
         N[f"cls:{q}:{m}"] = str(t.cls)
         N[f"undec:{q}:{m}"] = str(t.undec)
         N[f"rate:{q}:{m}"] = sci(t.rate)
+        N[f"rate3:{q}:{m}"] = sci(t.rate3)
         N[f"ns:{q}:{m}"] = ns_text(upper_median(t.ns))
     # Ratios of median times quoted in the text: certified against the seeds in double.
     for q in per_query:
@@ -311,6 +347,20 @@ def main():
         N[f"famfp:{key}"] = str(int(r["false_positive"]))
         N[f"famfn:{key}"] = str(int(r["false_negative"]))
         N[f"famn:{key}"] = str(int(r["n"]))
+        N[f"famcls:{key}"] = str(int(r["class_mismatch"]))
+    # Class mismatches in exact arithmetic (CORE::Expr): algorithmic, not rounding. Per algorithm,
+    # query and family with one, its count in CORE::Expr and, beside it, at 256 bits.
+    fam_cls = {(r["method"], r["query"], r["family"]): (int(r["class_mismatch"]), int(r["n"])) for r in families}
+    exact_cls = sorted((cr.split_method(m)[0], q, f, c, n) for (m, q, f), (c, n) in fam_cls.items()
+                       if cr.split_method(m)[1] == "core_expr" and c > 0)
+    items = []
+    for base, q, f, c, n in exact_cls:
+        c256 = fam_cls.get((f"{base}/gmpfr<256>", q, f))
+        at256 = f", {c256[0]} of {c256[1]} at 256 bits" if c256 else ""
+        items.append(f"{tex_escape(base)} on {QUERY_TEX.get(q, tex_escape(q))}, {tex_escape(f)} ({c} of {n} in \\nt{{CORE::Expr}}{at256})")
+    N["clsexact:count"] = str(len(exact_cls))
+    N["clsexact:families"] = {0: "no family", 1: "1 family"}.get(len(exact_cls), f"{len(exact_cls)} families")
+    N["clsexact:list"] = "; ".join(items) or "none"
     # Uniform inputs alone: every method with a disagreement there.
     uni = defaultdict(lambda: [0, 0, 0])
     for r in families:
@@ -324,33 +374,41 @@ def main():
     N["uniform:methods"] = str(len(uni))
     N["uniform:list"] = ", ".join(f"{method_tex(m)} ({v[1]}\\,FP, {v[2]}\\,FN of {v[0]})" for m, v in uni_bad) or "none"
 
-    # Range of the seeds' rates per number type (for the text).
+    # Range of the seeds' rates per number type (for the text), Boolean and three-valued.
     for nt, _ in NTS:
-        rates = [tally[f"{b}/{nt}"].rate for b, _ in SEED_BASES if f"{b}/{nt}" in tally and tally[f"{b}/{nt}"].decided]
+        ts = [tally[f"{b}/{nt}"] for b, _ in SEED_BASES if f"{b}/{nt}" in tally and tally[f"{b}/{nt}"].decided]
+        rates = [t.rate for t in ts]
+        rates3 = [t.rate3 for t in ts if t.rate3 is not None]
         if rates:
             N[f"ratemin:{nt}"] = sci(min(rates))
             N[f"ratemax:{nt}"] = sci(max(rates))
+        if rates3:
+            N[f"rate3min:{nt}"] = sci(min(rates3))
+            N[f"rate3max:{nt}"] = sci(max(rates3))
 
     # ---- Table: seeds by number type (algorithm vs rounding) ----
     lines = ["% Generated by paper/make_tables.py: do not edit.",
              "\\begin{tabular}{@{}l" + "r" * len(NTS) + "@{}}", "\\toprule",
              "algorithm & " + " & ".join(h for _, h in NTS) + "\\\\", "\\midrule"]
     for base, label in SEED_BASES:
-        cells, cells2 = [], []
+        cells, cells2, cells3 = [], [], []
         present = False
         for nt, _ in NTS:
             t = tally.get(f"{base}/{nt}")
             if t is None or t.n == 0:
                 cells.append("")
                 cells2.append("")
+                cells3.append("")
                 continue
             present = True
             cells.append(f"{t.fp}/{t.fn}/{t.cls}")
             extra = f"{t.decided}" + (f", {t.undec}\\,u" if t.undec else "")
             cells2.append(f"{{\\scriptsize {extra}}}")
+            cells3.append(f"{{\\scriptsize {pct_rate(t.rate)}/{pct_rate(t.rate3)}}}")
         if present:
             lines.append(f"{label} & " + " & ".join(cells) + "\\\\")
-            lines.append(" & " + " & ".join(cells2) + "\\\\[1pt]")
+            lines.append(" & " + " & ".join(cells2) + "\\\\")
+            lines.append(" & " + " & ".join(cells3) + "\\\\[1pt]")
     lines += ["\\bottomrule", "\\end{tabular}"]
     write(out, "tables/seeds_by_type.tex", "\n".join(lines) + "\n")
 
@@ -358,15 +416,16 @@ def main():
     order = {"certified": 0, "robust": 1, "peer": 2, "sweep": 3}
     others = sorted((m for m, t in tally.items() if t.kind in order), key=lambda m: (order[tally[m].kind], m))
     lines = ["% Generated by paper/make_tables.py: do not edit.",
-             "\\begin{tabular}{@{}lrrrrrrr@{}}", "\\toprule",
-             "method & $q$ & $n$ & FP & FN & class & rate & median\\\\", "\\midrule"]
+             "\\begin{tabular}{@{}lrrrrrrrr@{}}", "\\toprule",
+             "method & $q$ & $n$ & FP & FN & class & rate & 3-val. & median\\\\", "\\midrule"]
     last = None
     for m in others:
         t = tally[m]
         if last is not None and t.kind != last:
             lines.append("\\midrule")
         last = t.kind
-        lines.append(f"{method_tex(m)} & {len(t.queries)} & {t.n} & {t.fp} & {t.fn} & {t.cls} & {sci(t.rate)} & {ns_text(upper_median(t.ns))}\\\\")
+        lines.append(f"{method_tex(m)} & {len(t.queries)} & {t.n} & {t.fp} & {t.fn} & {t.cls} & {sci(t.rate)} & {sci(t.rate3)} & "
+                     f"{ns_text(upper_median(t.ns))}\\\\")
     lines += ["\\bottomrule", "\\end{tabular}"]
     write(out, "tables/other_methods.tex", "\n".join(lines) + "\n")
 
@@ -414,6 +473,79 @@ def main():
     lines += ["\\bottomrule", "\\end{tabular}"]
     write(out, "tables/t_error.tex", "\n".join(lines) + "\n")
 
+    # ---- errors against k (instances.csv): the rate per bin of k with Wilson intervals ----
+    # For the methods of K_TABLE_METHODS, per query: one pair of lines per error measure, the
+    # wrong answers over the decided ones per bin of cr.K_BINS and over all k, then the 95% Wilson
+    # interval in percent; the three-valued measure only for a three-valued method with a class
+    # mismatch (otherwise it equals the Boolean one, or is undefined). Each measure's first line
+    # is preceded by a comment "% error_by_k: QUERY METHOD MEASURE", which paper/check_paper.py
+    # reads to recount the line's cells from instances.csv.
+    by_k = cr.errors_by_k(rows)
+    boolean = cr.boolean_methods(rows)
+    nb = len(cr.K_BINS)
+
+    def k_head(b):
+        lo, hi = cr.K_BINS[b]
+        return "$0$" if lo is None else (f"$\\ge2^{{{lo}}}$" if hi is None else f"$2^{{{lo}}}$")
+
+    def k_words(b):
+        lo, hi = cr.K_BINS[b]
+        return "$k=0$" if lo is None else (f"$|k|\\ge2^{{{lo}}}$" if hi is None else f"$2^{{{lo}}}\\le|k|<2^{{{hi}}}$")
+
+    def wilson_pct(k, n):
+        lo, hi = cr.error_interval(k, n)
+        return f"{cr.percent_text(lo)}--{cr.percent_text(hi)}"
+
+    lines = ["% Generated by paper/make_tables.py: do not edit.",
+             "\\begin{tabular}{@{}ll" + "r" * (nb + 1) + "@{}}", "\\toprule",
+             "method & error & " + " & ".join(k_head(b) for b in range(nb)) + " & all $k$\\\\", "\\midrule"]
+    shown = 0
+    for q, ms in K_TABLE_METHODS:
+        present = [m for m in ms if (q, m) in by_k]
+        if not present:
+            continue
+        if shown:
+            lines.append("\\midrule")
+        lines.append(f"\\multicolumn{{{nb + 3}}}{{@{{}}l}}{{\\emph{{{QUERY_TEX.get(q, tex_escape(q))}}}}}\\\\")
+        for m in present:
+            bins = by_k[(q, m)]
+            total = cr.Errors.pooled(bins)
+            # The numbers the text quotes, for the Boolean error and, for a three-valued method
+            # (with or without class mismatches), the three-valued one; per bin, over all k and
+            # over k != 0; the highest bin with a wrong answer.
+            nonzero = cr.Errors.pooled(bins[1:])
+            for key, three in (("boolean", False), ("three_valued", True)):
+                if three and m in boolean:
+                    continue
+                for tag, e in [(str(b), e) for b, e in enumerate(bins)] + [("all", total), ("nonzero", nonzero)]:
+                    w = e.wrong3 if three else e.wrong
+                    N[f"kwrong:{key}:{q}:{m}:{tag}"] = str(w)
+                    N[f"kn:{key}:{q}:{m}:{tag}"] = str(e.decided)
+                    if e.decided:
+                        N[f"krate:{key}:{q}:{m}:{tag}"] = f"{cr.percent_text(w / e.decided)}\\,\\%"
+                        N[f"kci:{key}:{q}:{m}:{tag}"] = f"{wilson_pct(w, e.decided)}\\,\\%"
+                last = max((b for b, e in enumerate(bins) if (e.wrong3 if three else e.wrong)), default=None)
+                N[f"klast:{key}:{q}:{m}"] = "none" if last is None else k_words(last)
+            # The table: the three-valued lines only where class mismatches make them differ.
+            measures = [("boolean", "FP+FN", False)]
+            if m not in boolean and total.cls:
+                measures.append(("three_valued", "+class", True))
+            for key, label, three in measures:
+                counts = [(e.wrong3 if three else e.wrong, e.decided) for e in bins + [total]]
+                lines.append(f"% error_by_k: {q} {m} {key}")
+                lines.append(f"{method_tex(m) if not three else ''} & {label} & "
+                             + " & ".join(f"{w}/{n}" if n else "" for w, n in counts) + "\\\\")
+                lines.append(" & & " + " & ".join(f"{{\\tiny {wilson_pct(w, n)}}}" if n else "" for w, n in counts) + "\\\\[1pt]")
+            shown += 1
+    if not shown:
+        lines.append(f"\\multicolumn{{{nb + 3}}}{{@{{}}l}}{{none of the methods shown was run}}\\\\")
+    lines += ["\\bottomrule", "\\end{tabular}"]
+    write(out, "tables/error_by_k.tex", "\n".join(lines) + "\n")
+    for b in range(nb):
+        N[f"kbin:{b}"] = k_words(b)
+    N["kbins"] = str(nb)
+    N["kbinades"] = str(cr.K_BIN_BINADES)
+
     # ---- failure maps ----
     mapdir = os.path.join(res, "failure_maps")
     map_rows = []
@@ -432,29 +564,34 @@ def main():
             for a, code in (("separated", "s"), ("touching", "t"), ("overlapping", "o")):
                 N[f"map:{key}:cert:{a}"] = str(cert.get(code, 0))
             for m in methods:
-                wrong = undec = 0
+                # A cell "." (a slow method off its sub-grid) was not evaluated.
+                wrong = undec = cls = 0
                 for r in mrows:
                     c = r[m]
-                    if c in "ue":
+                    if c in "ue.":
                         undec += c == "u"
                         continue
                     if (c in "toi") != (r["certified"] in "toi"):
                         wrong += 1
+                    elif c + r["certified"] in ("to", "ot"):
+                        cls += 1
                 N[f"map:{key}:{m}"] = str(wrong)
+                N[f"mapcls:{key}:{m}"] = str(cls)
+                N[f"map3:{key}:{m}"] = str(wrong + cls)
                 N[f"mapundec:{key}:{m}"] = str(undec)
-                map_rows.append((key, m, wrong, undec))
+                map_rows.append((key, m, wrong, undec, cls))
     maps = sorted({k for k, *_ in map_rows})
     mlist = sorted({m for _, m, *_ in map_rows}, key=lambda m: (m.split("/")[0], m))
     lines = ["% Generated by paper/make_tables.py: do not edit.",
              "\\begin{tabular}{@{}l" + "r" * len(maps) + "@{}}", "\\toprule",
              "method & " + " & ".join(tex_escape(k.replace("_", " ")) for k in maps) + "\\\\", "\\midrule"]
-    cell = {(k, m): (w, u) for k, m, w, u in map_rows}
+    cell = {(k, m): (w, u, c) for k, m, w, u, c in map_rows}
     for m in mlist:
         cs = []
         for k in maps:
             if (k, m) in cell:
-                w, u = cell[(k, m)]
-                cs.append(f"{w}" + (f" ({u}\\,u)" if u else ""))
+                w, u, c = cell[(k, m)]
+                cs.append(f"{w}" + (f"\\,+\\,{c}\\,c" if c else "") + (f" ({u}\\,u)" if u else ""))
             else:
                 cs.append("")
         lines.append(f"{method_tex(m)} & " + " & ".join(cs) + "\\\\")

@@ -2,7 +2,9 @@
 # ctest 'paper': runs a tiny study, builds the paper against it (paper/build.sh, which ends with
 # paper/check_paper.py: every included table and figure exists and was generated from this
 # study's files, the PDF exists with a plausible page count), then shows that the checker
-# rejects a paper whose figure is missing and one whose figures are stale.
+# rejects a paper whose figure is missing, one without the table of errors against k, one whose
+# table of errors against k shows a count other than instances.csv's, and one whose figures are
+# stale.
 #   run_paper_test.sh CERTCYL_BINARY SOURCE_DIR WORK_DIR
 set -euo pipefail
 certcyl=$1
@@ -25,6 +27,35 @@ if check "$work/missing" "$work/tiny" > "$work/missing.log"; then
 fi
 grep -q "missing: $figure" "$work/missing.log" || { cat "$work/missing.log"; echo "FAILED: no 'missing' report"; exit 1; }
 
+# The errors against k: a paper.tex that leaves out their table must fail, and so must a table
+# whose counts differ from instances.csv even where its manifest entry was updated to match.
+cp -a "$work/paper" "$work/noktable"
+sed -i '/generated\/tables\/error_by_k/d' "$work/noktable/paper.tex"
+if check "$work/noktable" "$work/tiny" > "$work/noktable.log"; then
+  echo "FAILED: a paper without the table of errors against k was accepted"; exit 1
+fi
+grep -q "^check_paper: paper.tex does not include generated/tables/error_by_k.tex" "$work/noktable.log" \
+  || { cat "$work/noktable.log"; echo "FAILED: no report of the missing table of errors against k"; exit 1; }
+cp -a "$work/paper" "$work/recount"
+/usr/bin/python3 - "$work/recount/generated" <<'PY'
+import hashlib, json, re, sys
+gen = sys.argv[1]
+path = gen + "/tables/error_by_k.tex"
+lines = open(path).read().split("\n")
+i = next(k for k, l in enumerate(lines) if l.startswith("% error_by_k: ")) + 1
+lines[i] = re.sub(r"& (\d+)/(\d+)", lambda m: f"& {m.group(1)}/{int(m.group(2)) + 1}", lines[i], count=1)
+open(path, "w").write("\n".join(lines))
+man = json.load(open(gen + "/manifest.json"))
+man["outputs"]["tables/error_by_k.tex"] = hashlib.sha256(open(path, "rb").read()).hexdigest()
+json.dump(man, open(gen + "/manifest.json", "w"), indent=1, sort_keys=True)
+PY
+touch "$work/recount/paper.pdf"
+if check "$work/recount" "$work/tiny" > "$work/recount.log"; then
+  echo "FAILED: a table of errors against k with a wrong count was accepted"; exit 1
+fi
+grep -q "^check_paper: generated/tables/error_by_k.tex: .* instances.csv gives" "$work/recount.log" \
+  || { cat "$work/recount.log"; echo "FAILED: no report of the wrong count"; exit 1; }
+
 # Stale figures: another study (a different seed) replaces the results, the tables are
 # regenerated from it but the figures are not: the check must fail on the figures.
 "$certcyl" study --size tiny --seed 2 --out "$work" --name tiny2 --no-plots --threads 2 > "$work/study2.log"
@@ -37,4 +68,4 @@ grep -q "^check_paper: figures: stale" "$work/stale.log" || { cat "$work/stale.l
 if grep -q "^check_paper: generated: stale" "$work/stale.log"; then
   cat "$work/stale.log"; echo "FAILED: the regenerated tables were reported stale"; exit 1
 fi
-echo "paper test: built, checked, and the checker rejects a missing and a stale figure"
+echo "paper test: built, checked, and the checker rejects a missing and a stale figure, a paper without the errors against k and a wrong count in their table"
