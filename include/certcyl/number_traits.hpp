@@ -52,6 +52,9 @@
 #include <mpfr.h>
 #include <qd/dd_real.h>
 
+#include <algorithm>
+#include <climits>
+#include <cmath>
 #include <iterator>
 #include <string>
 #include <type_traits>
@@ -77,6 +80,18 @@ class GmpfrPrecision {
  private:
   CGAL::Gmpfr::Precision_type old_;
 };
+
+// The binade of a Gmpfr: e with 2^(e-1) <= |x| < 2^e; LONG_MIN for zero, NaN and infinities.
+inline long gmpfr_exponent(const CGAL::Gmpfr& x) { return mpfr_regular_p(x.fr()) ? static_cast<long>(mpfr_get_exp(x.fr())) : LONG_MIN; }
+
+// x 2^-shift rounded to a double; 0 for zero, NaN and infinities. The power of two is clamped to
+// [-1100, 1100], beyond which the result underflows to 0 or overflows to infinity anyway.
+inline double gmpfr_scaled_double(const CGAL::Gmpfr& x, long shift) {
+  if (!mpfr_regular_p(x.fr())) return 0.0;
+  long e = 0;
+  const double m = mpfr_get_d_2exp(&e, x.fr(), MPFR_RNDN);
+  return std::ldexp(m, static_cast<int>(std::clamp(e - shift, -1100L, 1100L)));
+}
 
 // Runs f() with the FPU rounding toward +infinity, as Interval_nt<false> requires.
 template <class F>

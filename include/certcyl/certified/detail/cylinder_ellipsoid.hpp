@@ -656,8 +656,7 @@ class DirectionProblem {
         const F wf[3] = {gmpfr_of(x.x) * inv, gmpfr_of(x.y) * inv, gmpfr_of(x.z) * inv};
         // A common exponent: w_k = W_k 2^we with |W_k| < 2^bits.
         long top = std::numeric_limits<long>::min();
-        for (const F& f : wf)
-          if (!mpfr_zero_p(f.fr())) top = std::max(top, static_cast<long>(mpfr_get_exp(f.fr())));
+        for (const F& f : wf) top = std::max(top, gmpfr_exponent(f));
         we = top - bits;
         for (int k = 0; k < 3; ++k) {
           F t = nt::constant<F>(0);

@@ -46,6 +46,16 @@
 
 namespace certcyl::detail {
 
+// g = |w|^2 and its first four derivatives (index k: the k-th) at the angle whose cosine and sine
+// are c and s, for w = a0 + a1 c + a2 s (the formulas above), in double or Gmpfr.
+template <class T>
+std::array<T, 5> rim_distance_derivatives(const Vec3<T>& a0, const Vec3<T>& a1, const Vec3<T>& a2, const T& c, const T& s) {
+  const T two = nt::constant<T>(2), three = nt::constant<T>(3), six = nt::constant<T>(6), eight = nt::constant<T>(8);
+  const Vec3<T> w = a0 + a1 * c + a2 * s, w1 = a2 * c - a1 * s, w2 = a0 - w;
+  const T ww1 = dot(w, w1), w1w1 = dot(w1, w1), ww2 = dot(w, w2), w2w2 = dot(w2, w2);
+  return {dot(w, w), two * ww1, two * (w1w1 + ww2), two * (three * dot(w1, w2) - ww1), -two * ww2 - eight * w1w1 + six * w2w2};
+}
+
 inline std::vector<Point3<Rational>> rim_points_nearest_line(const Point3<Rational>& E, const Vec3<Rational>& Ai, const Rational& r,
                                                              const Point3<Rational>& p, const Vec3<Rational>& Aj, const Rational& rj,
                                                              long precision) {
@@ -80,64 +90,35 @@ inline std::vector<Point3<Rational>> rim_points_nearest_line(const Point3<Ration
   // Double samples, scaled by 2^-ex (ex the largest coefficient's exponent).
   long ex = LONG_MIN;
   for (const Vec3<F>* a : {&a0, &a1, &a2})
-    for (const F* c : {&a->x, &a->y, &a->z})
-      if (mpfr_regular_p(c->fr())) ex = std::max<long>(ex, mpfr_get_exp(c->fr()));
+    for (const F* c : {&a->x, &a->y, &a->z}) ex = std::max(ex, gmpfr_exponent(*c));
   if (ex == LONG_MIN) return out;
-  const auto scaled = [ex](const F& x, long power) {
-    if (!mpfr_regular_p(x.fr())) return 0.0;
-    long e2 = 0;
-    const double m = mpfr_get_d_2exp(&e2, x.fr(), MPFR_RNDN);
-    const long k = e2 - power * ex;
-    return k < -1100 ? 0.0 : std::ldexp(m, static_cast<int>(std::min(k, 1100L)));
+  const auto scaled = [ex](const Vec3<F>& a) {
+    return Vec3<double>{gmpfr_scaled_double(a.x, ex), gmpfr_scaled_double(a.y, ex), gmpfr_scaled_double(a.z, ex)};
   };
-  double A[3][3];
-  {
-    const Vec3<F>* as[3] = {&a0, &a1, &a2};
-    for (int k = 0; k < 3; ++k) {
-      A[k][0] = scaled(as[k]->x, 1);
-      A[k][1] = scaled(as[k]->y, 1);
-      A[k][2] = scaled(as[k]->z, 1);
-    }
-  }
+  const Vec3<double> A0 = scaled(a0), A1 = scaled(a1), A2 = scaled(a2);
   const double R = [&] {
     GmpfrPrecision scope(64);
-    return scaled(f(rj * rj), 2);
+    return gmpfr_scaled_double(f(rj * rj), 2 * ex);
   }();
-  // g and its first three derivatives at t, in double.
-  const auto derivatives = [&A](double t, double d[4]) {
-    const double c = std::cos(t), s = std::sin(t);
-    double w[3], w1[3], w2[3];
-    for (int m = 0; m < 3; ++m) {
-      w[m] = A[0][m] + A[1][m] * c + A[2][m] * s;
-      w1[m] = A[2][m] * c - A[1][m] * s;
-      w2[m] = A[0][m] - w[m];
-    }
-    const auto dt = [](const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
-    d[0] = dt(w, w);
-    d[1] = 2 * dt(w, w1);
-    d[2] = 2 * (dt(w1, w1) + dt(w, w2));
-    d[3] = 2 * (3 * dt(w1, w2) - dt(w, w1));
-  };
+  // g and its derivatives at t, in double.
+  const auto derivatives = [&](double t) { return rim_distance_derivatives(A0, A1, A2, std::cos(t), std::sin(t)); };
   constexpr int n = 64;
   double g[n];
-  for (int k = 0; k < n; ++k) {
-    double d[4];
-    derivatives(2 * std::numbers::pi * k / n, d);
-    g[k] = d[0];
-  }
+  for (int k = 0; k < n; ++k) g[k] = derivatives(2 * std::numbers::pi * k / n)[0];
   std::vector<double> starts;
   for (int k = 0; k < n; ++k) {
     if (!(g[k] <= g[(k + n - 1) % n] && g[k] < g[(k + 1) % n])) continue;
-    double t = 2 * std::numbers::pi * k / n, d[4];
+    double t = 2 * std::numbers::pi * k / n;
+    std::array<double, 5> d;
     for (int it = 0; it < 30; ++it) {
-      derivatives(t, d);
+      d = derivatives(t);
       const double den = d[2] * d[2] - d[1] * d[3];
       if (!(den != 0) || !std::isfinite(den)) break;
       const double h = -d[1] * d[2] / den;
       t += std::clamp(h, -0.5, 0.5);
       if (std::abs(h) < 1e-15) break;
     }
-    derivatives(t, d);
+    d = derivatives(t);
     if (!(d[0] <= R + 0x1p-40)) continue;
     if (std::any_of(starts.begin(), starts.end(), [t](double s) { return std::abs(std::remainder(s - t, 2 * std::numbers::pi)) < 1e-9; }))
       continue;
@@ -149,32 +130,25 @@ inline std::vector<Point3<Rational>> rim_points_nearest_line(const Point3<Ration
   const Frame high = frame();
   const Vec3<F>&u = high.u, &v = high.v, &b0 = high.a0, &b1 = high.a1, &b2 = high.a2;
   const F& rf = high.r;
-  const F one = nt::constant<F>(1), two = nt::constant<F>(2), three = nt::constant<F>(3), six = nt::constant<F>(6),
-          eight = nt::constant<F>(8);
+  const F one = nt::constant<F>(1), six = nt::constant<F>(6);
   struct Angle {
     F c, s;
   };
-  // g', g'', g''', g'''' at an angle.
-  const auto derivatives_at = [&](const Angle& a) {
-    const Vec3<F> w = b0 + b1 * a.c + b2 * a.s, w1 = b2 * a.c - b1 * a.s, w2 = b0 - w;
-    const F ww1 = dot(w, w1), w1w1 = dot(w1, w1), ww2 = dot(w, w2), w2w2 = dot(w2, w2);
-    return std::array<F, 4>{two * ww1, two * (w1w1 + ww2), two * (three * dot(w1, w2) - ww1), -two * ww2 - eight * w1w1 + six * w2w2};
-  };
+  const auto derivatives_at = [&](const Angle& a) { return rim_distance_derivatives(b0, b1, b2, a.c, a.s); };
   const auto rotate = [&one](Angle& a, const F& h) {
     const F norm = CGAL::sqrt(one + h * h);
     const F c = (a.c - h * a.s) / norm, s = (a.s + h * a.c) / norm;
     a = {c, s};
   };
-  const auto exponent = [](const F& x) { return x == 0 ? LONG_MIN : static_cast<long>(mpfr_get_exp(x.fr())); };
   // Newton's method on g' (k = 1) or g''' (k = 3), at most 24 steps; true when the steps reach
   // the working precision or stop shrinking below half of it (the rounding noise).
   const auto newton = [&](Angle& a, int k) {
     long previous = LONG_MAX;
     for (int it = 0; it < 24; ++it) {
-      const std::array<F, 4> d = derivatives_at(a);
-      if (!(d[k] != 0)) return false;
-      const F h = -d[k - 1] / d[k];
-      const long eh = exponent(h);
+      const std::array<F, 5> d = derivatives_at(a);
+      if (!(d[k + 1] != 0)) return false;
+      const F h = -d[k] / d[k + 1];
+      const long eh = gmpfr_exponent(h);
       if (eh > -2) return false;  // a step of a quarter radian or more: not near the root
       rotate(a, h);
       if (eh < 8 - precision || (eh < -precision / 2 && eh >= previous - 1)) return true;
@@ -183,7 +157,7 @@ inline std::vector<Point3<Rational>> rim_points_nearest_line(const Point3<Ration
     return false;
   };
   const auto keep = [&](const Angle& a) {
-    if (!(derivatives_at(a)[1] > 0)) return;
+    if (!(derivatives_at(a)[2] > 0)) return;
     const Vec3<F> x = (u * a.c + v * a.s) * rf;
     out.push_back(E + Vec3<Rational>{to_rational(x.x), to_rational(x.y), to_rational(x.z)});
   };
@@ -203,21 +177,15 @@ inline std::vector<Point3<Rational>> rim_points_nearest_line(const Point3<Ration
     // binade where its terms balance, and each polished by Newton's method on g'.
     Angle xc = start;
     if (!newton(xc, 3)) continue;
-    const std::array<F, 4> d = derivatives_at(xc);
-    if (!(d[3] != 0)) continue;
-    const F p = six * d[1] / d[3], q = six * d[0] / d[3];
-    const long ep = exponent(p), eq = exponent(q);
+    const std::array<F, 5> d = derivatives_at(xc);
+    if (!(d[4] != 0)) continue;
+    const F p = six * d[2] / d[4], q = six * d[1] / d[4];
+    const long ep = gmpfr_exponent(p), eq = gmpfr_exponent(q);
     long e = LONG_MIN;
     if (ep != LONG_MIN) e = (ep + 1) / 2 + 1;
     if (eq != LONG_MIN) e = std::max(e, eq / 3 + 1);
     if (e == LONG_MIN) continue;
-    const auto unscaled = [&](const F& x, long power) {
-      if (x == 0) return 0.0;
-      long e2 = 0;
-      const double m = mpfr_get_d_2exp(&e2, x.fr(), MPFR_RNDN);
-      return std::ldexp(m, static_cast<int>(std::clamp(e2 - power * e, -1100L, 1100L)));
-    };
-    const double P = unscaled(p, 2), Q = unscaled(q, 3);  // z^3 + P z + Q = 0, y = 2^e z
+    const double P = gmpfr_scaled_double(p, 2 * e), Q = gmpfr_scaled_double(q, 3 * e);  // z^3 + P z + Q = 0, y = 2^e z
     std::vector<double> zs;
     const double disc = Q * Q / 4 + P * P * P / 27;
     if (disc > 0) {
