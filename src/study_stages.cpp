@@ -1,6 +1,6 @@
 // How the certified reference answers of the cylinder pairs were decided, per family: the stage
 // of certified_cylinder_cylinder (result.stage), the arithmetic of the deciding check
-// (result.certified_by) and the Gmpfr precision used (result.gmpfr_precision), read from the
+// (result.certified_by) and the Gmpfr rounds' precision (result.gmpfr_precision), read from the
 // stage, certified_by and gmpfr_bits columns of inputs.csv (so a merge recomputes it from the
 // merged rows). stages.csv holds the counts per (family, stage, arithmetic, precision); the text
 // table, for summary.txt, one line per family.

@@ -102,8 +102,9 @@ struct Instance {
   double t_in = std::numeric_limits<double>::quiet_NaN();      // line queries: nearest double to the exact entry parameter
   bool certified_ok = false;
   // cylinder_cylinder only (certified/cylinder_cylinder.hpp): the stage that decided (result.stage),
-  // the arithmetic of its deciding check (result.certified_by) and the highest Gmpfr precision
-  // used (result.gmpfr_precision, 0 if none); empty and 0 for the other queries.
+  // the arithmetic of its deciding check (result.certified_by) and the highest precision of the
+  // Gmpfr stage's rounds (result.gmpfr_precision, 0 if none ran); empty and 0 for the other
+  // queries.
   std::string_view stage, certified_by;
   long gmpfr_precision = 0;
 };

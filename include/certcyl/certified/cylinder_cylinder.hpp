@@ -126,6 +126,7 @@
 #include <optional>
 #include <string_view>
 #include <utility>
+#include <variant>
 
 #include "certcyl/answer.hpp"
 #include "certcyl/certified/detail/cylinder_active_set.hpp"
@@ -283,7 +284,9 @@ struct CylinderCylinderResult {
   // the query.
   CylinderGap gap() const;
 
-  long gmpfr_precision = 0;      // highest Gmpfr precision used, 0 if none
+  // The highest precision of the Gmpfr stage's rounds, 0 if none ran. The candidates' own Gmpfr
+  // evaluations (corner planes, rim points, axis witnesses) are not counted.
+  long gmpfr_precision = 0;
   long ellipsoid_precision = 0;  // highest precision of the ellipsoid stage, 0 if it did not run
   CylinderCylinderCounters counters;
   std::array<double, kCylinderStages> stage_seconds{};  // indexed by CylinderStage; zero unless time_stages
@@ -1404,42 +1407,63 @@ class CylinderCylinderSolver {
   // cap stopped a cylinder's planes (a gain it could not resolve, or the last plane it allowed),
   // and skips a cylinder whose planes ended with every gain resolved within the last cap (a
   // higher cap would change at most the precision of a plane on the way; the candidates are
-  // heuristics either way).
+  // heuristics either way). The planes are computed in the ring frame when the pair has one (its
+  // integers in Mpzf: no gcds), else on the input in Gmpq.
   static constexpr long kCornerFirstCap = 1024, kCornerMaxPrecision = 4096;
   bool corner_candidates(long max_precision) {
     if (corner_cap_ >= max_precision) return false;
     const bool first_call = corner_cap_ == 0;
     corner_cap_ = max_precision;
+    if (const RingFrame* f = ring()) return corner_planes(f->pair, max_precision, first_call);
+    return corner_planes(exact(), max_precision, first_call);
+  }
+  // A ring-frame direction or point (nothing to undo for a direction), checked exactly.
+  bool exact_separates(const Vec3<CGAL::Mpzf>& D) {
+    ++result_.counters.directions_checked;
+    ++result_.counters.exact_checks;
+    last_check_ = CylinderArithmetic::exact;
+    return separation_sign(ring()->pair, D) == CGAL::POSITIVE && separated_by(mpzf_to_rational(D));
+  }
+  bool exact_overlaps(const Point3<CGAL::Mpzf>& X) {
+    ++result_.counters.points_checked;
+    ++result_.counters.exact_checks;
+    last_check_ = CylinderArithmetic::exact;
+    const RingFrame& f = *ring();
+    const CGAL::Mpzf one(1);
+    return strictly_inside_both(f.pair, X) && overlapping_at(X.map([&](const CGAL::Mpzf& x) { return f.to_input(x, one); }));
+  }
+  template <class R>
+  bool corner_planes(const CylinderPair<R>& e, long max_precision, bool first_call) {
     constexpr long first_precision = 192;
     // Twelve planes at 4,096 bits, one more for each doubling of the cap (a plane's bits double).
     const int max_passes = 12 + std::max(0, static_cast<int>(std::bit_width(static_cast<unsigned long>(max_precision / kCornerMaxPrecision))) - 1);
-    const CylinderPair<Rational>& e = exact();
-    const int larger = e.AA0 + 4 * e.c0.radius * e.c0.radius >= e.AA1 + 4 * e.c1.radius * e.c1.radius ? 0 : 1;
+    const R four = nt::constant<R>(4);
+    const int larger = e.AA0 + four * e.c0.radius * e.c0.radius >= e.AA1 + four * e.c1.radius * e.c1.radius ? 0 : 1;
     for (const int i : {larger, 1 - larger}) {
-      const Cylinder<Rational>& ci = i == 0 ? e.c0 : e.c1;
-      const Cylinder<Rational>& cj = i == 0 ? e.c1 : e.c0;
-      Point3<Rational> y = cj.p0 + cj.axis() / Rational(2);
+      const Cylinder<R>& ci = i == 0 ? e.c0 : e.c1;
+      const Cylinder<R>& cj = i == 0 ? e.c1 : e.c0;
+      Point3<R> y = cj.p0 + cj.axis() * corner_two_power<R>(-1);
       long precision = first_precision;
       int first_pass = 0;
       if (!first_call) {
         // Planes whose run ended with every gain resolved within the last cap are not rerun.
         if (!corner_resume_[i]) continue;
         const CornerResume& r = *corner_resume_[i];
-        y = r.y;
+        y = std::get<Point3<R>>(r.y);
         first_pass = r.pass;  // the plane short of bits, or the one after the last allowed
         precision = std::min(max_precision, std::max(2 * r.precision, r.needed));
         corner_resume_[i].reset();
       }
-      std::optional<std::pair<Point3<Rational>, long>> before;  // the last plane's point and starting precision
-      long start = precision;                                   // this plane's starting precision
+      std::optional<std::pair<Point3<R>, long>> before;  // the last plane's point and starting precision
+      long start = precision;                            // this plane's starting precision
       for (int pass = first_pass; pass < max_passes;) {  // a pass is a plane; more bits for it are not a pass
-        std::optional<Vec3<Rational>> D;
-        std::optional<Point3<Rational>> X;
-        Point3<Rational> next;
+        std::optional<Vec3<R>> D;
+        std::optional<Point3<R>> X;
+        Point3<R> next;
         long needed = 0;
         {
           GmpfrPrecision scope(precision);
-          const CornerPlane plane = CornerPlane::make(ci, cj, y);
+          const CornerPlane<R> plane = CornerPlane<R>::make(ci, cj, y);
           const CGAL::Gmpfr t = plane.best();
           const CGAL::Gmpfr g = plane.gain(t);
           // A gain rounded to zero says only that this precision is short: double it (rather
@@ -1454,8 +1478,8 @@ class CylinderCylinderSolver {
           }
           next = X ? *X : plane.support(t).x;
         }
-        if (D && exact_separates(*D)) return true;
-        if (X && exact_overlaps(*X)) return true;
+        if (D && exact_separates(std::move(*D))) return true;
+        if (X && exact_overlaps(std::move(*X))) return true;
         if (needed > precision && precision < max_precision) {
           precision = std::min(max_precision, std::max(2 * precision, needed));
           continue;  // the same plane, more bits
@@ -1531,14 +1555,31 @@ class CylinderCylinderSolver {
   // cylinder c when Y is strictly inside it: the least of its distances to the cap planes,
   // m / |A| with m = min(u, A.A - u), u = (Y - p0).A, and to the wall,
   // r - |x| / |A| >= (r^2 A.A - |x|^2) / (2 r A.A) with x = (Y - p0) x A; nullopt otherwise.
+  // On common denominators: V = d (Y - p0) and P = a A integers (d, a the least common multiples
+  // of the denominators), so that the products carry no gcds (which made this the larger part of
+  // the cap-disk candidates' cost on input spanning hundreds of binades). Then
+  //   u d a^2 = a V.P,  (A.A - u) d a^2 = d P.P - a V.P,
+  //   tube (r_d d a)^2 = r_n^2 d^2 P.P - r_d^2 |V x P|^2   (r = r_n / r_d),
+  // and a binade is read off a numerator and denominator as binade() reads a Rational's.
   static std::optional<long> depth_binade(const Point3<Rational>& Y, const Cylinder<Rational>& c, const Vec3<Rational>& A,
                                           const Rational& AA) {
-    const Vec3<Rational> v = Y - c.p0;
-    const Rational u = dot(v, A), m = std::min(u, Rational(AA - u));
-    const Vec3<Rational> x = cross(v, A);
-    const Rational tube = c.radius * c.radius * AA - dot(x, x);
-    if (!(m > 0) || !(tube > 0)) return std::nullopt;
-    return std::min(binade(m) - binade(AA) / 2, binade(tube) - binade(AA) - binade(c.radius) - 1);
+    using Z = CGAL::Gmpz;
+    Z d = 1, a = 1;
+    for (const Rational* q : {&Y.x, &Y.y, &Y.z, &c.p0.x, &c.p0.y, &c.p0.z}) mpz_lcm(d.mpz(), d.mpz(), mpq_denref(q->mpq()));
+    for (const Rational* q : {&A.x, &A.y, &A.z}) mpz_lcm(a.mpz(), a.mpz(), mpq_denref(q->mpq()));
+    const auto integers = [](const Vec3<Rational>& v, const Z& l) { return v.map([&l](const Rational& q) { return scaled_integer(q, l); }); };
+    const Vec3<Z> V = integers(Y, d) - integers(c.p0, d), P = integers(A, a);
+    const Z VP = dot(V, P), PP = dot(P, P);
+    const Z u = a * VP, rest = d * PP - u;
+    if (CGAL::sign(u) != CGAL::POSITIVE || CGAL::sign(rest) != CGAL::POSITIVE) return std::nullopt;
+    const Vec3<Z> X = cross(V, P);
+    const Z rn = c.radius.numerator(), rd = c.radius.denominator();
+    const Z tube = rn * rn * d * d * PP - rd * rd * dot(X, X);
+    if (CGAL::sign(tube) != CGAL::POSITIVE) return std::nullopt;
+    const auto bits = [](const Z& z) { return static_cast<long>(mpz_sizeinbase(z.mpz(), 2)); };
+    const Z daa = d * a * a, rda = rd * d * a;
+    const long m_binade = bits(std::min(u, rest)) - bits(daa), tube_binade = bits(tube) - bits(rda * rda);
+    return std::min(m_binade - binade(AA) / 2, tube_binade - binade(AA) - binade(c.radius) - 1);
   }
 
   // Y + 2^-k V for the k that makes |2^-k V| a few binades below 2^depth, and 16 binades further
@@ -1970,7 +2011,7 @@ class CylinderCylinderSolver {
   bool ring_tried_ = false;
   long corner_cap_ = 0;          // the highest precision cap corner_candidates() ran with
   struct CornerResume {          // where that cap stopped the planes of cylinder i
-    Point3<Rational> y;
+    std::variant<Point3<Rational>, Point3<CGAL::Mpzf>> y;  // in the frame of the planes
     int pass;
     long precision, needed;
   };

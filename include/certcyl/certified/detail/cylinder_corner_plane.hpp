@@ -32,6 +32,11 @@
 // support point moved towards a point c of j's axis near it (at distance min(r_j, |A_j| / 2)
 // from the end) by a power of two eta small against the depth. They are candidates only: the
 // caller checks each exactly.
+//
+// The exact ring R: Rational for any input, or CGAL::Mpzf for a pair in the ring frame
+// (detail/cylinder_ring_frame.hpp; integer input, and every rounding above is dyadic, so every
+// number here is a dyadic rational): the reductions' products then carry no gcds, which were
+// most of a plane's cost on input spanning hundreds of binades.
 #pragma once
 
 #include <CGAL/Gmpfr.h>
@@ -39,14 +44,45 @@
 #include <algorithm>
 #include <array>
 #include <optional>
+#include <type_traits>
 
 #include "certcyl/certified/detail/cylinder_ellipsoid.hpp"
+#include "certcyl/certified/detail/cylinder_ring_frame.hpp"
 #include "certcyl/number_traits.hpp"
 #include "certcyl/primitives.hpp"
 #include "certcyl/vec3.hpp"
 
 namespace certcyl::detail {
 
+// The exact ring's conversions: a Gmpfr of the scope's precision from R (rounded), R from a
+// Gmpfr (exactly), and 2^k in R.
+inline CGAL::Gmpfr corner_gmpfr(const Rational& q) { return nt::from_rational<CGAL::Gmpfr>(q); }
+inline CGAL::Gmpfr corner_gmpfr(const CGAL::Mpzf& x) {
+  if (CGAL::is_zero(x)) return nt::constant<CGAL::Gmpfr>(0);
+  const CGAL::Gmpq q = static_cast<CGAL::Gmpq>(x);  // dyadic: the denominator is a power of two
+  return gmpfr_of(CGAL::Gmpz(mpq_numref(q.mpq())), 1 - static_cast<long>(mpz_sizeinbase(mpq_denref(q.mpq()), 2)));
+}
+template <class R>
+R corner_exact(const CGAL::Gmpfr& x) {
+  if constexpr (std::is_same_v<R, CGAL::Mpzf>) {
+    if (!mpfr_regular_p(x.fr())) return CGAL::Mpzf(0);
+    CGAL::Gmpz m;
+    const long e = mpfr_get_z_2exp(m.mpz(), x.fr());  // x = m 2^e
+    return mpzf_times_two_power(mpzf_from_integer(m), e);
+  } else {
+    return to_rational(x);
+  }
+}
+template <class R>
+R corner_two_power(long k) {
+  if constexpr (std::is_same_v<R, CGAL::Mpzf>) {
+    return mpzf_times_two_power(CGAL::Mpzf(1), k);
+  } else {
+    return times_two_power(Rational(1), k);
+  }
+}
+
+template <class R>
 class CornerPlane {
  public:
   using F = CGAL::Gmpfr;
@@ -54,33 +90,35 @@ class CornerPlane {
   // A point of j: an end plus an offset of length r_j (rounded), and an interior point of j's
   // axis beside it; with its local coordinates (x - q).u and (x - q).e.
   struct Point {
-    Point3<Rational> x, c;
+    Point3<R> x, c;
     F xu, xe;
   };
 
   // The plane of cylinder i through y (any plane through the axis when y is on it), seen by
   // cylinder j. Call inside a GmpfrPrecision scope (it sets the precision of every number here).
-  static CornerPlane make(const Cylinder<Rational>& ci, const Cylinder<Rational>& cj, const Point3<Rational>& y) {
-    const Vec3<Rational> A = ci.axis(), Aj = cj.axis();
+  static CornerPlane make(const Cylinder<R>& ci, const Cylinder<R>& cj, const Point3<R>& y) {
+    const Vec3<R> A = ci.axis(), Aj = cj.axis();
     // w is (A.A) times the part of y - p0 orthogonal to A: no division, so dyadic input keeps
-    // dyadic numbers (Gmpq's gcds stay trivial) and only its direction matters below.
-    const Rational AA = dot(A, A);
-    const Rational along = dot(y - ci.p0, A);
-    Vec3<Rational> w = AA * (y - ci.p0) - along * A;
-    if (w == Vec3<Rational>{0, 0, 0}) {
-      const Rational ax = CGAL::abs(A.x), ay = CGAL::abs(A.y), az = CGAL::abs(A.z);
-      const Vec3<Rational> k = ax <= ay && ax <= az ? Vec3<Rational>{1, 0, 0} : ay <= az ? Vec3<Rational>{0, 1, 0} : Vec3<Rational>{0, 0, 1};
+    // dyadic numbers and only its direction matters below.
+    const R AA = dot(A, A);
+    const R along = dot(y - ci.p0, A);
+    Vec3<R> w = AA * (y - ci.p0) - along * A;
+    if (CGAL::is_zero(w.x) && CGAL::is_zero(w.y) && CGAL::is_zero(w.z)) {
+      const R ax = CGAL::abs(A.x), ay = CGAL::abs(A.y), az = CGAL::abs(A.z);
+      const R zero = nt::constant<R>(0), one = nt::constant<R>(1);
+      const Vec3<R> k = ax <= ay && ax <= az ? Vec3<R>{one, zero, zero} : ay <= az ? Vec3<R>{zero, one, zero} : Vec3<R>{zero, zero, one};
       w = AA * k - dot(k, A) * A;
     }
-    const Rational ww = dot(w, w);
-    const bool far_end = 2 * along >= AA;
+    const R ww = dot(w, w);
+    const bool far_end = nt::constant<R>(2) * along >= AA;
     CornerPlane c;
     c.p0_ = ci.p0;
     c.AA_ = AA;
     c.ww_ = ww;
     c.R_ = ci.radius;
+    c.RRww_ = ci.radius * ci.radius * ww;
     c.far_end_ = far_end;
-    c.axial_ = far_end ? A : Vec3<Rational>(-A);
+    c.axial_ = far_end ? A : Vec3<R>(-A);
     c.radial_ = w;
     c.inv_axial_ = k(1) / CGAL::sqrt(f(AA));
     c.inv_radial_ = k(1) / CGAL::sqrt(f(ww));
@@ -88,7 +126,7 @@ class CornerPlane {
     c.E_ = {cj.p0, cj.p1};
     c.Aj_exact_ = Aj;
     c.AAj_ = dot(Aj, Aj);
-    c.inv_AAj_ = to_rational(k(1) / f(c.AAj_));
+    c.inv_AAj_ = corner_exact<R>(k(1) / f(c.AAj_));
     for (int e = 0; e < 2; ++e) c.local(c.E_[e], c.ca_[e], c.cr_[e]);
     c.jj_ = f(c.AAj_);
     c.rj_ = f(cj.radius);
@@ -99,10 +137,9 @@ class CornerPlane {
     c.ex_ = cross(w, Aj).map(f) * c.inv_radial_;
     // The interior points of j's axis beside each end: at min(r_j, |A_j| / 2) from it (rounded
     // to a rational fraction lambda of the axis, 0 < lambda <= 1/2).
-    Rational lambda(1, 2);
+    R lambda = corner_two_power<R>(-1);
     const F ratio = c.rj_ / CGAL::sqrt(c.jj_);
-    if (ratio < k(1) / k(2)) lambda = to_rational(ratio);
-    if (!(lambda > 0)) lambda = Rational(1, 2);
+    if (ratio < k(1) / k(2) && ratio > 0) lambda = corner_exact<R>(ratio);
     c.inner_ = {cj.p0 + lambda * Aj, cj.p1 - lambda * Aj};
     return c;
   }
@@ -161,8 +198,8 @@ class CornerPlane {
   }
 
   // The rational direction a' s A + b' w with a' ~ (1 - t) / |A| and b' ~ t / |w|.
-  Vec3<Rational> direction(const F& t) const {
-    return to_rational((k(1) - t) * inv_axial_) * axial_ + to_rational(t * inv_radial_) * radial_;
+  Vec3<R> direction(const F& t) const {
+    return corner_exact<R>((k(1) - t) * inv_axial_) * axial_ + corner_exact<R>(t * inv_radial_) * radial_;
   }
 
   // j's support point in direction -D(t): the lower end plus r_j times the unit part of -D
@@ -179,7 +216,7 @@ class CornerPlane {
       // Exactly in the plane of the end disc (near a face, p is small and its rounding tilts it).
       // (A_j.A_j) o - (o.A_j) A_j is exactly orthogonal to A_j; times a dyadic 1 / A_j.A_j (its
       // length is rounded anyway) it stays so, without a division.
-      const Vec3<Rational> o = offset.map([](const F& x) { return to_rational(x); });
+      const Vec3<R> o = offset.map([](const F& x) { return corner_exact<R>(x); });
       s.x = E_[end] + inv_AAj_ * (AAj_ * o - dot(o, Aj_exact_) * Aj_exact_);
       local(s.x, s.xu, s.xe);
     }
@@ -189,15 +226,16 @@ class CornerPlane {
   // A candidate interior point of j deepest in the wedge, or nullopt when none is in the wedge
   // at the working precision or the inset would be below the rounding of the support points.
   // `spread`: the step either side of t where the support set of j may be a face.
-  std::optional<Point3<Rational>> witness(const F& t, const F& spread, long precision) const {
+  std::optional<Point3<R>> witness(const F& t, const F& spread, long precision) const {
     const F lo = t - spread < 0 ? k(0) : F(t - spread), hi = t + spread > 1 ? k(1) : F(t + spread);
     const Point m = support(lo), p = support(hi);
     const auto depth = [](const F& xu, const F& xe) { return -(xu > xe ? xu : xe); };
     // The combination lambda m + (1 - lambda) p whose two depths are equal.
-    Rational lambda = 1;
+    const R one = nt::constant<R>(1);
+    R lambda = one;
     F best_depth = depth(m.xu, m.xe);
     if (depth(p.xu, p.xe) > best_depth) {
-      lambda = 0;
+      lambda = nt::constant<R>(0);
       best_depth = depth(p.xu, p.xe);
     }
     const F den = (m.xu - p.xu) - (m.xe - p.xe);
@@ -205,7 +243,7 @@ class CornerPlane {
       F l = (p.xe - p.xu) / den;
       if (l < 0) l = k(0);
       if (l > 1) l = k(1);
-      const Rational lq = to_rational(l);
+      const R lq = corner_exact<R>(l);
       const F lf = f(lq);
       const F d = depth(lf * m.xu + (k(1) - lf) * p.xu, lf * m.xe + (k(1) - lf) * p.xe);
       if (d > best_depth) {
@@ -214,40 +252,39 @@ class CornerPlane {
       }
     }
     if (!(best_depth > 0)) return std::nullopt;
-    const Point3<Rational> x = m.x + (Rational(1) - lambda) * (p.x - m.x);
-    const Point3<Rational> c = m.c + (Rational(1) - lambda) * (p.c - m.c);
+    const Point3<R> x = m.x + (one - lambda) * (p.x - m.x);
+    const Point3<R> c = m.c + (one - lambda) * (p.c - m.c);
     // eta = 2^-shift with eta |x - c|_1 <= depth / 4: the inset costs at most a quarter of the
     // depth; and eta far above the rounding of the offsets (r_j 2^-precision against the
     // distance min(r_j, |A_j| / 2) of c from j's boundary).
-    const Vec3<Rational> xc = x - c;
+    const Vec3<R> xc = x - c;
     const F size = f(CGAL::abs(xc.x) + CGAL::abs(xc.y) + CGAL::abs(xc.z));
-    const long shift = std::max(1L, exponent(k(4) * size / best_depth) + 1);
-    const long room = exponent(CGAL::sqrt(jj_) / rj_);
+    const long shift = std::max(1L, gmpfr_exponent(k(4) * size / best_depth) + 1);
+    const long room = gmpfr_exponent(CGAL::sqrt(jj_) / rj_);
     if (shift + std::max(0L, -room) + 24 > precision) return std::nullopt;
-    const Rational eta = times_two_power(Rational(1), -shift);
+    const R eta = corner_two_power<R>(-shift);
     return x + eta * (c - x);
   }
 
   // Precision needed to resolve a gain of g at t: its terms' scale over |g|, in bits.
   long bits_to_resolve(const F& t, const F& g) const {
     if (g == 0) return std::numeric_limits<long>::max();
-    return exponent(scale(t) / CGAL::abs(g)) + 32;
+    return gmpfr_exponent(scale(t) / CGAL::abs(g)) + 32;
   }
 
  private:
-  static F f(const Rational& q) { return nt::from_rational<F>(q); }
+  static F f(const R& q) { return corner_gmpfr(q); }
   static F k(int n) { return nt::constant<F>(n); }
-  static long exponent(const F& x) { return x == 0 ? 0 : static_cast<long>(mpfr_get_exp(x.fr())); }
 
   // (x - q).u and (x - q).e for a rational x, reduced exactly (see the header).
-  void local(const Point3<Rational>& x, F& xu, F& xe) const {
-    const Vec3<Rational> v = x - p0_;
-    const Rational along = dot(v, axial_);  // s (x - p0).A
-    xu = f(far_end_ ? Rational(along - AA_) : along) * inv_axial_;
-    const Rational rho_w = dot(v, radial_);  // rho |w|
-    if (rho_w > 0) {
+  void local(const Point3<R>& x, F& xu, F& xe) const {
+    const Vec3<R> v = x - p0_;
+    const R along = dot(v, axial_);  // s (x - p0).A
+    xu = f(far_end_ ? R(along - AA_) : along) * inv_axial_;
+    const R rho_w = dot(v, radial_);  // rho |w|
+    if (CGAL::sign(rho_w) == CGAL::POSITIVE) {
       const F rho = f(rho_w) * inv_radial_;
-      xe = f(rho_w * rho_w - R_ * R_ * ww_) / f(ww_) / (rho + Rf_);
+      xe = f(rho_w * rho_w - RRww_) / f(ww_) / (rho + Rf_);
     } else {
       xe = f(rho_w) * inv_radial_ - Rf_;
     }
@@ -261,13 +298,13 @@ class CornerPlane {
     return dot(x, x) / jj_;
   }
 
-  Point3<Rational> p0_;
-  Rational AA_, ww_, R_, AAj_, inv_AAj_;  // inv_AAj_: 1 / A_j.A_j rounded (dyadic)
-  Vec3<Rational> Aj_exact_;
+  Point3<R> p0_;
+  R AA_, ww_, R_, RRww_, AAj_, inv_AAj_;  // RRww_: R^2 w.w; inv_AAj_: 1 / A_j.A_j rounded (dyadic)
+  Vec3<R> Aj_exact_;
   bool far_end_ = false;
-  Vec3<Rational> axial_, radial_;  // s A and w
+  Vec3<R> axial_, radial_;  // s A and w
   F inv_axial_, inv_radial_, Rf_;  // 1 / |A|, 1 / |w|, R
-  std::array<Point3<Rational>, 2> E_, inner_;
+  std::array<Point3<R>, 2> E_, inner_;
   std::array<F, 2> ca_, cr_;  // (E_k - q).u, (E_k - q).e
   F jj_, rj_;                 // A_j.A_j, r_j
   Vec3<F> u_, e_, Aj_, ux_, ex_;  // u, e, A_j, u x A_j, e x A_j
