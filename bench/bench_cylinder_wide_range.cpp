@@ -11,7 +11,12 @@
 // (10^60 + 7) / (3 10^59 + 1) and 1/3, and moved 2^-k apart and 2^-k into overlap along its
 // contact normal, k = 100, 1000, 5000, 10000 (rim-rim k = 5000 took minutes before the corner
 // planes could go on between the rounds). BM_fuzz_found/<pair>: the slowest pairs the pair fuzz
-// harness found (binary64; their answers worked out by hand, below). Per family: the time of one call on each
+// harness found (binary64; their answers worked out by hand, below). BM_random_wide/<n>: n random
+// binary64 pairs in the pair fuzz harness's input format (fuzz/fuzz_input.hpp: each number a random
+// bit pattern or a small dyadic; seed 1; pairs with a non-finite number or failing validation
+// skipped), whose exponents spread over the whole range; no answer is known by construction, so an
+// answer is checked only for being decided and the same in both orders, and the counter
+// over_10ms counts the calls above the 10 ms target. Per family: the time of one call on each
 // pair (one call: the slowest pairs took seconds before the corner candidates), as mean, median
 // and max, the slowest pair, the answers and the stages that decided. The exit status is 1 when
 // an answer contradicts the construction or is undecided.
@@ -21,11 +26,13 @@
 #include <chrono>
 #include <cstdio>
 #include <map>
+#include <random>
 #include <string>
 #include <vector>
 
-#include "checked_main.hpp"
+#include "../fuzz/fuzz_input.hpp"
 #include "../tests/test_cylinder_wide_range_cases.hpp"
+#include "checked_main.hpp"
 #include "certcyl/certified/cylinder_cylinder.hpp"
 
 namespace {
@@ -167,6 +174,65 @@ void run_family(benchmark::State& state, const Family& f) {
   state.SetLabel(label);
 }
 
+// The random wide pairs (header comment), both orders each.
+void run_random_wide(benchmark::State& state, int n) {
+  std::vector<std::pair<certcyl::Cylinder<certcyl::Rational>, certcyl::Cylinder<certcyl::Rational>>> pairs;
+  std::mt19937_64 rng(1);
+  while (static_cast<int>(pairs.size()) < n) {
+    std::uint8_t bytes[126];
+    for (std::uint8_t& b : bytes) b = static_cast<std::uint8_t>(rng() & 0xff);
+    certcyl::fuzz::ByteReader in(bytes, sizeof bytes);
+    const certcyl::Cylinder<certcyl::Rational> a = in.cylinder(), b = in.cylinder();
+    if (!in.finite()) continue;
+    try {
+      certcyl::validate(a, "a");
+      certcyl::validate(b, "b");
+    } catch (const certcyl::InvalidInput&) {
+      continue;
+    }
+    pairs.emplace_back(a, b);
+  }
+  std::vector<double> t;
+  std::map<std::string, int> stages;
+  int slowest = -1;
+  double slowest_us = -1;
+  for (auto _ : state) {
+    for (int i = 0; i < n; ++i) {
+      certcyl::Answer answers[2];
+      for (const int swap : {0, 1}) {
+        const auto& a = swap ? pairs[i].second : pairs[i].first;
+        const auto& b = swap ? pairs[i].first : pairs[i].second;
+        const auto start = std::chrono::steady_clock::now();
+        const certcyl::CylinderCylinderResult r = certcyl::certified_cylinder_cylinder(a, b);
+        const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+        if (us > slowest_us) slowest_us = us, slowest = i;
+        t.push_back(us);
+        ++stages[std::string(certcyl::to_string(r.stage))];
+        answers[swap] = r.answer;
+      }
+      if (answers[0] == certcyl::Answer::undecided || answers[0] != answers[1]) {
+        ++contradictions;
+        std::fprintf(stderr, "bench_cylinder_wide_range: random wide pair %d: answers %s and %s\n", i,
+                     std::string(certcyl::to_string(answers[0])).c_str(), std::string(certcyl::to_string(answers[1])).c_str());
+      }
+    }
+  }
+  const double over = static_cast<double>(std::count_if(t.begin(), t.end(), [](double us) { return us > 10000; }));
+  std::sort(t.begin(), t.end());
+  double mean = 0;
+  for (double x : t) mean += x;
+  mean /= static_cast<double>(t.size());
+  state.counters["pairs"] = static_cast<double>(t.size());
+  state.counters["mean_us"] = mean;
+  state.counters["p50_us"] = t[t.size() / 2];
+  state.counters["p99_us"] = t[t.size() * 99 / 100];
+  state.counters["max_us"] = t.back();
+  state.counters["over_10ms"] = over;
+  std::string label = "slowest pair " + std::to_string(slowest) + ";";
+  for (const auto& [s, k] : stages) label += " " + s + ":" + std::to_string(k);
+  state.SetLabel(label);
+}
+
 const bool registered = [] {
   for (const bool binary64 : {true, false}) {
     static std::vector<Family> store[2];
@@ -182,6 +248,9 @@ const bool registered = [] {
     benchmark::RegisterBenchmark(("BM_deep/" + f.name).c_str(), [&f](benchmark::State& s) { run_family(s, f); })
         ->Unit(benchmark::kMillisecond)
         ->Iterations(1);
+  benchmark::RegisterBenchmark("BM_random_wide/1500", [](benchmark::State& s) { run_random_wide(s, 1500); })
+      ->Unit(benchmark::kMillisecond)
+      ->Iterations(1);
   static const std::vector<Family> fuzz_found = fuzz_found_families();
   for (const Family& f : fuzz_found)
     benchmark::RegisterBenchmark(("BM_fuzz_found/" + f.name).c_str(), [&f](benchmark::State& s) { run_family(s, f); })
