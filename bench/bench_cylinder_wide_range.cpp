@@ -15,10 +15,10 @@
 // binary64 pairs in the pair fuzz harness's input format (fuzz/fuzz_input.hpp: each number a random
 // bit pattern or a small dyadic; seed 1; pairs with a non-finite number or failing validation
 // skipped), whose exponents spread over the whole range; no answer is known by construction, so an
-// answer is checked only for being decided and the same in both orders, and the counter
-// over_10ms counts the calls above the 10 ms target. Per family: the time of one call on each
-// pair (one call: the slowest pairs took seconds before the corner candidates), as mean, median
-// and max, the slowest pair, the answers and the stages that decided. The exit status is 1 when
+// answer is checked only for being decided and the same in both orders. Per family: the time of
+// one call on each pair (one call: the slowest pairs took seconds before the corner candidates),
+// as mean, median, p99 and max, the calls above the 10 ms target (over_10ms), the slowest pair,
+// the answers and the stages that decided. The exit status is 1 when
 // an answer contradicts the construction or is undecided.
 #include <benchmark/benchmark.h>
 
@@ -134,6 +134,25 @@ std::vector<Family> fuzz_found_families() {
   return out;
 }
 
+// A family's counters (the times t of its calls in us: mean, median, p99, max, the number over the
+// 10 ms target) and its label (the slowest call and the stages that decided).
+void report(benchmark::State& state, std::vector<double>& t, const std::map<std::string, int>& stages, const std::string& slowest) {
+  const double over = static_cast<double>(std::count_if(t.begin(), t.end(), [](double us) { return us > 10000; }));
+  std::sort(t.begin(), t.end());
+  double mean = 0;
+  for (double x : t) mean += x;
+  mean /= static_cast<double>(t.size());
+  state.counters["pairs"] = static_cast<double>(t.size());
+  state.counters["mean_us"] = mean;
+  state.counters["p50_us"] = t[t.size() / 2];
+  state.counters["p99_us"] = t[t.size() * 99 / 100];
+  state.counters["max_us"] = t.back();
+  state.counters["over_10ms"] = over;
+  std::string label = "slowest " + slowest + ";";
+  for (const auto& [s, n] : stages) label += " " + s + ":" + std::to_string(n);
+  state.SetLabel(label);
+}
+
 void run_family(benchmark::State& state, const Family& f) {
   std::vector<double> t;
   std::map<std::string, int> stages;
@@ -161,17 +180,7 @@ void run_family(benchmark::State& state, const Family& f) {
         }
       }
   }
-  std::sort(t.begin(), t.end());
-  double mean = 0;
-  for (double x : t) mean += x;
-  mean /= static_cast<double>(t.size());
-  state.counters["pairs"] = static_cast<double>(t.size());
-  state.counters["mean_us"] = mean;
-  state.counters["p50_us"] = t[t.size() / 2];
-  state.counters["max_us"] = t.back();
-  std::string label = "slowest " + slowest + ";";
-  for (const auto& [s, n] : stages) label += " " + s + ":" + std::to_string(n);
-  state.SetLabel(label);
+  report(state, t, stages, slowest);
 }
 
 // The random wide pairs (header comment), both orders each.
@@ -217,20 +226,7 @@ void run_random_wide(benchmark::State& state, int n) {
       }
     }
   }
-  const double over = static_cast<double>(std::count_if(t.begin(), t.end(), [](double us) { return us > 10000; }));
-  std::sort(t.begin(), t.end());
-  double mean = 0;
-  for (double x : t) mean += x;
-  mean /= static_cast<double>(t.size());
-  state.counters["pairs"] = static_cast<double>(t.size());
-  state.counters["mean_us"] = mean;
-  state.counters["p50_us"] = t[t.size() / 2];
-  state.counters["p99_us"] = t[t.size() * 99 / 100];
-  state.counters["max_us"] = t.back();
-  state.counters["over_10ms"] = over;
-  std::string label = "slowest pair " + std::to_string(slowest) + ";";
-  for (const auto& [s, k] : stages) label += " " + s + ":" + std::to_string(k);
-  state.SetLabel(label);
+  report(state, t, stages, "pair " + std::to_string(slowest));
 }
 
 const bool registered = [] {
