@@ -261,6 +261,13 @@ def main():
         N[f"inst:answer:{a}"] = str(answers.get(a, 0))
     N["inst:atdegeneracy"] = str(sum(r["k_ulps"] in ("0", "0.0") and r["family"] != "uniform" for r in inputs))
     N["inst:uniform"] = str(sum(r["family"] == "uniform" for r in inputs))
+    # The fewest uniform random instances of a query, and what a method without an error on them
+    # is shown of typical input: its error rate below the 95% Wilson upper bound of 0 in that many.
+    uni_q = Counter(r["query"] for r in inputs if r["family"] == "uniform")
+    if uni_q:
+        n_uni = min(uni_q.values())
+        N["uniform:perquery"] = str(n_uni)
+        N["uniform:zerobound"] = f"{cr.percent_text(cr.error_interval(0, n_uni)[1])}\\,\\%"
     maxk = max((abs(int(float(r["k_ulps"]))) for r in inputs if r["k_ulps"] not in ("",)), default=0)
     N["inst:maxk"] = sci(float(maxk))
 
