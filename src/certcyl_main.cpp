@@ -91,6 +91,10 @@ int main(int argc, char** argv) {
                   "Only id, meta, answer, the interval of a line query as two doubles (certified: the proved\n"
                   "nearest doubles of the exact endpoints), the certified gap and the reason of an invalid answer");
   query->add_option("--threads", threads, "Worker threads (default 1; 0 = all cores)")->check(CLI::Range(0u, 1024u));
+  query->add_option("--time-limit", options.time_limit_seconds,
+                    "Seconds a certified cylinder-pair line may take before it is answered undecided with a\n"
+                    "reason (checked between its stages and rounds, so it can run over; default 0: no limit)")
+      ->check(CLI::Range(0.0, 1e9));
   query->add_flag("--line-buffered", options.line_buffered,
                   "Answer every line and flush its answer as soon as it is read (for a co-process; without it\n"
                   "lines are answered in batches, cut short whenever no more input is at hand)");

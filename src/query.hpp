@@ -40,6 +40,10 @@ struct QueryOptions {
   // no more input is at hand, so a co-process gets its answer either way; the option makes it
   // so whatever the input reports as available (and gives up batching across threads).
   bool line_buffered = false;
+  // --time-limit: the certified cylinder-pair query's time limit per line in seconds
+  // (CylinderCylinderOptions::time_limit_seconds); 0, the default, is none. A line that runs out
+  // is answered undecided with a reason.
+  double time_limit_seconds = 0;
 };
 
 // Limits on one input line.

@@ -10,16 +10,19 @@
 
 namespace certcyl::cli {
 
-// The command reports the tighter gap enclosure of the ranked fast path.
-CylinderCylinderOptions command_options() {
+// The command reports the tighter gap enclosure of the ranked fast path, and passes on the time
+// limit of --time-limit.
+CylinderCylinderOptions command_options(const QueryOptions& q) {
   CylinderCylinderOptions o;
   o.refine_gap = true;
+  o.time_limit_seconds = q.time_limit_seconds;
   return o;
 }
 
 ojson cylinder_cylinder_json(const CylinderCylinderResult& r) {
   ojson out = answer_json(r.answer, r.answer != Answer::undecided, "certified", std::string(to_string(r.certified_by)));
   out["stage"] = std::string(to_string(r.stage));
+  if (r.time_limit_reached) out["reason"] = "time limit reached (--time-limit)";
   // log(phi*): negative when separated, 0 when touching, positive when overlapping; null when
   // the midpoints coincide (phi* is undefined: overlapping at every scale).
   const CylinderGap gap = r.gap();
@@ -86,7 +89,7 @@ ojson answer_cylinders(const json& in, const QueryOptions& o) {
   JsonReader reader;
   const Cylinder<Rational> a = reader.cylinder(JsonReader::member(in, "", "a"), "a");
   const Cylinder<Rational> b = reader.cylinder(JsonReader::member(in, "", "b"), "b");
-  if (o.method == "certified") return cylinder_cylinder_json(certified_cylinder_cylinder(a, b, command_options()));
+  if (o.method == "certified") return cylinder_cylinder_json(certified_cylinder_cylinder(a, b, command_options(o)));
   const EberlyVariant variant = o.method == "eberly_as_written" ? EberlyVariant::as_written : EberlyVariant::corrected;
   const EberlyParameters params = eberly_parameters(in, variant);
   ojson details;

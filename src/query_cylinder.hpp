@@ -7,7 +7,7 @@
 namespace certcyl::cli {
 
 // The options of the certified cylinder-cylinder query in the command (refine_gap on).
-CylinderCylinderOptions command_options();
+CylinderCylinderOptions command_options(const QueryOptions& o);
 ojson cylinder_cylinder_json(const CylinderCylinderResult& r);
 
 }  // namespace certcyl::cli

@@ -176,3 +176,32 @@ BOOST_AUTO_TEST_CASE(brief_answers) {
   BOOST_TEST(p["gap"][1].get<double>() < 0);
   BOOST_TEST(p["gap"][0].get<double>() <= p["gap"][1].get<double>());
 }
+
+// --time-limit (QueryOptions::time_limit_seconds): the needles of test_cylinder_wide_range's
+// time-limit case (a along y, 2^422 long; b's cap disk tilted into a's wall) overlap and are
+// decided only after the optimiser. With a limit that has run out before the first check the line
+// is answered undecided with a reason, and the run still exits 0 (every line was answered);
+// without a limit the answer is overlapping, with no reason.
+BOOST_AUTO_TEST_CASE(a_time_limit_that_runs_out_is_answered_undecided_with_a_reason) {
+  CGAL::Gmpz two_422;
+  mpz_ui_pow_ui(two_422.mpz(), 2, 422);
+  std::ostringstream digits;
+  digits << two_422;
+  const std::string far = "\"" + digits.str() + "\"";
+  const std::string line = R"({"id": 1, "query": "cylinder_cylinder", "a": {"p0": [0,0,0], "p1": [0,)" + far +
+                           R"(,0], "radius": 22.5}, "b": {"p0": [)" + far + R"(, 8.75, 22.5], "p1": [22.5, 22.5, 22.5], "radius": 22.5}})" + "\n";
+  QueryOptions limited;
+  limited.time_limit_seconds = 1e-9;
+  const Run stopped = run(line, limited);
+  BOOST_TEST(stopped.status == 0);
+  BOOST_TEST_REQUIRE(stopped.lines.size() == 1u);
+  BOOST_TEST(stopped.lines[0]["answer"] == "undecided");
+  BOOST_TEST(stopped.lines[0]["reason"] == "time limit reached (--time-limit)");
+  limited.brief = true;
+  BOOST_TEST(run(line, limited).lines.at(0)["reason"] == "time limit reached (--time-limit)");
+  const Run decided = run(line);
+  BOOST_TEST(decided.status == 0);
+  BOOST_TEST_REQUIRE(decided.lines.size() == 1u);
+  BOOST_TEST(decided.lines[0]["answer"] == "overlapping");
+  BOOST_TEST(!decided.lines[0].contains("reason"));
+}

@@ -624,3 +624,27 @@ BOOST_AUTO_TEST_CASE(rims_dipping_below_an_ulp_are_decided_by_the_rim_points_nea
     }
   }
 }
+
+// The caller's time limit (CylinderCylinderOptions::time_limit_seconds, off by default): the
+// needles of the case above overlap (their common point X is checked exactly there), and the
+// query decides them only after the optimiser, so with a limit that has run out before the first
+// check the answer is undecided with time_limit_reached, and without one it is overlapping. Two
+// unit cylinders 10 apart are decided by the midpoints and fast-path stages, before any check:
+// the limit leaves them decided.
+BOOST_AUTO_TEST_CASE(a_time_limit_that_runs_out_answers_undecided_and_says_so) {
+  const certcyl::Cylinder<double> needle_a{{0, 0, 0}, {0, 0x1p+422, 0}, 22.5};
+  const certcyl::Cylinder<double> needle_b{{0x1p+422, 8.75, 22.5}, {22.5, 22.5, 22.5}, 22.5};
+  certcyl::CylinderCylinderOptions limited;
+  limited.time_limit_seconds = 1e-9;
+  const auto stopped = certcyl::certified_cylinder_cylinder(needle_a, needle_b, limited);
+  BOOST_TEST(stopped.answer == Answer::undecided);
+  BOOST_TEST(stopped.time_limit_reached);
+  BOOST_TEST((stopped.stage == certcyl::CylinderStage::none));
+  const auto decided = certcyl::certified_cylinder_cylinder(needle_a, needle_b);
+  BOOST_TEST(decided.answer == Answer::overlapping);
+  BOOST_TEST(!decided.time_limit_reached);
+  const certcyl::Cylinder<double> unit_a{{0, 0, 0}, {0, 0, 1}, 1}, unit_b{{10, 0, 0}, {10, 0, 1}, 1};
+  const auto quick = certcyl::certified_cylinder_cylinder(unit_a, unit_b, limited);
+  BOOST_TEST(quick.answer == Answer::separated);
+  BOOST_TEST(!quick.time_limit_reached);
+}

@@ -99,8 +99,8 @@
 //                    (Theorem "precision"): linear in the input's bit size, and astronomically
 //                    pessimistic (about 4.4e9 bits for binary64 input of full range; the precisions
 //                    the stage reaches are reported per answer in ellipsoid_precision). Only a
-//                    caller's max_precision or prove_touching = false leaves it bounded, and the
-//                    answer undecided when no proof was found within it.
+//                    caller's max_precision, time_limit_seconds or prove_touching = false leaves
+//                    it bounded, and the answer undecided when no proof was found within it.
 // Undecided results carry the certified bounds gap().phi_lower <= phi* <= gap().phi_upper, so
 // |phi* - 1| <= gap().distance_bound().
 //
@@ -197,6 +197,14 @@ struct CylinderCylinderOptions {
   // precision, and a negative value skips both: the answer may then be undecided, the only way
   // it can be.
   long max_precision = 0;
+  // A resource limit on the query's time, in seconds. 0 (the default): none. Positive: once that
+  // much wall time has passed, the query stops at its next check and answers undecided, with
+  // time_limit_reached set. The checks come before each stage after the optimiser, before each
+  // corner plane, Gmpfr round and ellipsoid run; a check never interrupts an exact evaluation,
+  // a Gmpfr round or an ellipsoid run, so the query can overrun the limit by the longest of
+  // these (on input of thousands of digits, a second or more). The study and the command's
+  // default never set it.
+  double time_limit_seconds = 0;
   // Try the exact touching proofs (stages touching_exact and the reconstruction in gmpfr).
   bool prove_touching = true;
   // Run the refine stage (Newton's method in double-double on the optimality conditions). Off,
@@ -288,6 +296,7 @@ struct CylinderCylinderResult {
   // evaluations (corner planes, rim points, axis witnesses) are not counted.
   long gmpfr_precision = 0;
   long ellipsoid_precision = 0;  // highest precision of the ellipsoid stage, 0 if it did not run
+  bool time_limit_reached = false;  // undecided because options.time_limit_seconds ran out (false when decided)
   CylinderCylinderCounters counters;
   std::array<double, kCylinderStages> stage_seconds{};  // indexed by CylinderStage; zero unless time_stages
 
@@ -456,19 +465,27 @@ class CylinderCylinderSolver {
   }
 
   CylinderCylinderResult run() {
+    if (options_.time_limit_seconds > 0)
+      deadline_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options_.time_limit_seconds));
     if (midpoints()) return finish();
     if (fast_path()) return finish();
     if (optimiser()) return finish();
-    if (options_.refine && refine()) return finish();
-    if (options_.prove_touching && ellipsoid_probe()) return finish();
-    if (options_.prove_touching && !touching_tried_ && touching_exact()) return finish();
-    if (arbitrary_precision()) return finish();
+    if (options_.refine && !out_of_time() && refine()) return finish();
+    if (options_.prove_touching && !out_of_time() && ellipsoid_probe()) return finish();
+    if (options_.prove_touching && !touching_tried_ && !out_of_time() && touching_exact()) return finish();
+    if (!out_of_time() && arbitrary_precision()) return finish();
     result_.stage = CylinderStage::none;
     return finish();
   }
 
  private:
   using Clock = std::chrono::steady_clock;
+
+  // The caller's time limit (options.time_limit_seconds) has run out; once true, always true.
+  bool out_of_time() {
+    if (!deadline_ || result_.time_limit_reached) return result_.time_limit_reached;
+    return result_.time_limit_reached = Clock::now() >= *deadline_;
+  }
 
   // ---- frames -----------------------------------------------------------------------------------
   static double largest_magnitude(const Cylinder<double>& c) {
@@ -565,6 +582,7 @@ class CylinderCylinderSolver {
   }
 
   CylinderCylinderResult finish() {
+    if (result_.answer != Answer::undecided) result_.time_limit_reached = false;  // a candidate past a check decided
     if (result_.answer == Answer::touching) {
       result_.gap_ = {true, 1, 1};
     } else if (gap_on() && !coincident_ && phi_upper_ && phi_lower_ > 0) {
@@ -1457,6 +1475,7 @@ class CylinderCylinderSolver {
       std::optional<std::pair<Point3<R>, long>> before;  // the last plane's point and starting precision
       long start = precision;                            // this plane's starting precision
       for (int pass = first_pass; pass < max_passes;) {  // a pass is a plane; more bits for it are not a pass
+        if (out_of_time()) return false;
         std::optional<Vec3<R>> D;
         std::optional<Point3<R>> X;
         Point3<R> next;
@@ -1820,14 +1839,15 @@ class CylinderCylinderSolver {
     // j stops after 128 2^48 = 2^55 bits (4 PiB a number): no machine gets there, and the
     // shifts below stay within a long.
     for (int j = 0; j < 49; ++j) {
+      if (out_of_time()) break;
       const long ph = first << j, pe = 128L << j;
       const bool heuristic = ph <= heuristic_limit, complete = ellipsoid_on && (limit == 0 || pe <= limit);
       if (!heuristic && !complete) break;
       const bool gmpfr_first = ph <= 4 * pe;
       if (heuristic && gmpfr_first && gmpfr_round(ph)) return true;
-      if (corner_candidates(std::max({kCornerMaxPrecision, 64 * pe, corner_number_cap}))) return true;
-      if (complete && ellipsoid_round(pe)) return true;
-      if (heuristic && !gmpfr_first && gmpfr_round(ph)) return true;
+      if (!out_of_time() && corner_candidates(std::max({kCornerMaxPrecision, 64 * pe, corner_number_cap}))) return true;
+      if (complete && !out_of_time() && ellipsoid_round(pe)) return true;
+      if (heuristic && !gmpfr_first && !out_of_time() && gmpfr_round(ph)) return true;
     }
     return pass();
   }
@@ -1885,9 +1905,12 @@ class CylinderCylinderSolver {
     const DirectionProblem& directions = *direction_problem_;
     const long warm = result_.gmpfr_precision / 2;
     if (point_start_ && p > warm && point_run(points, EllipsoidMode::fast, p, 12 * p, &*point_start_, warm)) return true;
-    if (direction_start_ && p > warm && direction_run(directions, EllipsoidMode::fast, p, 6 * p, &*direction_start_, warm)) return true;
-    return point_run(points, EllipsoidMode::fast, p, 12 * p) || direction_run(directions, EllipsoidMode::fast, p, 6 * p) ||
-           point_run(points, EllipsoidMode::rounded, p, p / 8) || direction_run(directions, EllipsoidMode::rounded, p, p / 8);
+    if (direction_start_ && p > warm && !out_of_time() && direction_run(directions, EllipsoidMode::fast, p, 6 * p, &*direction_start_, warm))
+      return true;
+    return (!out_of_time() && point_run(points, EllipsoidMode::fast, p, 12 * p)) ||
+           (!out_of_time() && direction_run(directions, EllipsoidMode::fast, p, 6 * p)) ||
+           (!out_of_time() && point_run(points, EllipsoidMode::rounded, p, p / 8)) ||
+           (!out_of_time() && direction_run(directions, EllipsoidMode::rounded, p, p / 8));
   }
 
   // The frames fitted to the slab and tube bounds for input spanning over 256 binades, where they
@@ -1985,6 +2008,7 @@ class CylinderCylinderSolver {
   }
 
   CylinderCylinderOptions options_;
+  std::optional<Clock::time_point> deadline_;  // options_.time_limit_seconds after run() began
   // The exact input: the caller's Rational cylinders (they outlive the solver, which lives in
   // one call), or the converted double input, built when first needed.
   std::array<const Cylinder<Rational>*, 2> input_{nullptr, nullptr};
