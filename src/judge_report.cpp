@@ -242,10 +242,11 @@ void write_results(const fs::path& dir, const fs::path& shown, const std::string
   }
 
   // speed.csv: the method beside the study's methods on its speed-against-error figure, one row per
-  // query in the columns of the study's summary.csv (the disagreement rate among the decided
-  // answers of the certified cases, as the study's) but for the last, mean_ns: the judged time is
+  // query in the columns of the study's summary.csv up to its timing (the disagreement rate among
+  // the decided answers of the certified cases, as the study's), then mean_ns: the judged time is
   // a total over all the cases (a program's exchange cannot be split per query), so its mean,
-  // the same on every row, where summary.csv has the median of per-instance times.
+  // the same on every row, where summary.csv has the median of per-instance times (and then
+  // its three-valued rate, which speed.csv leaves out).
   if (std::isfinite(answers.ns_per_query)) {
     std::ofstream speed(dir / "speed.csv");
     speed << "query,method,kind,n,false_positive,false_negative,class_mismatch,undecided,error,invalid,disagreement_rate,mean_ns\n";

@@ -30,9 +30,13 @@ struct Tally {
   std::set<std::string> queries;
   long n = 0, fp = 0, fn = 0, cls = 0, undecided = 0, errors = 0, invalid = 0;
   std::vector<double> ns;
-  double rate() const {
+  // The Boolean error, (FP + FN) / decided; and the three-valued one, (FP + FN + class) / decided,
+  // which a Boolean method (one that answers "intersecting") does not have.
+  double rate() const { return share(fp + fn); }
+  double rate3() const { return share(fp + fn + cls); }
+  double share(long wrong) const {
     const long decided = n - undecided - errors - invalid;
-    return decided > 0 ? static_cast<double>(fp + fn) / static_cast<double>(decided) : 0.0;
+    return decided > 0 ? static_cast<double>(wrong) / static_cast<double>(decided) : 0.0;
   }
   double median_ns() {
     if (ns.empty()) return 0;
@@ -58,22 +62,25 @@ struct Checks {
   long instances = 0, uncertified = 0, gap_sign_mismatch = 0, construction_mismatch = 0;
 };
 
-std::string summary_table(std::map<std::string, Tally>& by_method, const Checks& c) {
+std::string summary_table(std::map<std::string, Tally>& by_method, const std::set<std::string>& boolean, const Checks& c) {
   std::ostringstream os;
   os << std::left << std::setw(46) << "method" << ' ' << std::setw(16) << "kind" << std::right << std::setw(4) << "q" << std::setw(8) << "n"
      << std::setw(7) << "FP" << std::setw(7) << "FN" << std::setw(7) << "class" << std::setw(7) << "undec" << std::setw(6) << "err"
-     << std::setw(6) << "inv" << std::setw(10) << "rate" << std::setw(11) << "ns(med)" << '\n';
-  os << std::string(136, '-') << '\n';
+     << std::setw(6) << "inv" << std::setw(10) << "rate" << std::setw(10) << "rate3" << std::setw(11) << "ns(med)" << '\n';
+  os << std::string(146, '-') << '\n';
   for (auto& [name, t] : by_method) {
-    char rate[32];
+    char rate[32], rate3[32];
     std::snprintf(rate, sizeof rate, "%.2e", t.rate());
+    std::snprintf(rate3, sizeof rate3, "%.2e", t.rate3());
     os << std::left << std::setw(46) << name << ' ' << std::setw(16) << t.kind << std::right << std::setw(4) << t.queries.size() << std::setw(8)
        << t.n << std::setw(7) << t.fp << std::setw(7) << t.fn << std::setw(7) << t.cls << std::setw(7) << t.undecided << std::setw(6)
-       << t.errors << std::setw(6) << t.invalid << std::setw(10) << rate << std::setw(11) << std::fixed << std::setprecision(0)
-       << t.median_ns() << '\n';
+       << t.errors << std::setw(6) << t.invalid << std::setw(10) << rate << std::setw(10) << (boolean.count(name) ? "--" : rate3) << std::setw(11)
+       << std::fixed << std::setprecision(0) << t.median_ns() << '\n';
     os.unsetf(std::ios::fixed);
   }
-  os << "rate = (FP + FN) / decided answers; class = touching/overlapping confused; inv = a reported value not finite; q = queries covered.\n";
+  os << "rate = (FP + FN) / decided answers (Boolean error); rate3 = (FP + FN + class) / decided answers (three-valued error; --\n"
+        "for a Boolean method, one that answers \"intersecting\"); class = touching/overlapping confused; inv = a reported value not\n"
+        "finite; q = queries covered.\n";
   os << "checks: " << c.instances << " instances, " << c.uncertified << " left undecided by the certified query, "
      << c.gap_sign_mismatch << " gap-sign mismatches, " << c.construction_mismatch
      << " disagreements between construction and certified answer.\n";
@@ -127,31 +134,39 @@ std::string write_summary(const fs::path& dir) {
   std::map<std::string, Tally> by_method;
   std::map<std::tuple<std::string, std::string>, Tally> by_method_query;
   std::map<std::tuple<std::string, std::string, std::string>, Tally> by_family;
+  std::set<std::string> boolean;  // the methods that answer "intersecting" (no three-valued error)
   {
     std::ifstream in(dir / "instances.csv");
     std::string line;
     std::getline(in, line);
     while (std::getline(in, line)) {
       const Row r = parse_row(line);
+      if (r.answer == "intersecting") boolean.insert(r.method);
       by_method[r.method].add(r);
       by_method_query[{r.query, r.method}].add(r);
       by_family[{r.query, r.family, r.method}].add(r);
     }
   }
   const Checks c = checks_from_inputs(dir / "inputs.csv");
-  const std::string table = summary_table(by_method, c) + core_diagnostics(dir) + '\n' + write_stages(dir);
+  const std::string table = summary_table(by_method, boolean, c) + core_diagnostics(dir) + '\n' + write_stages(dir);
+  // The three-valued rate's field: empty for a Boolean method.
+  const auto rate3 = [&boolean](const Tally& t, const std::string& method) { return boolean.count(method) ? std::string() : num(t.rate3()); };
   write_whole(dir / "summary.txt", table);
   std::ofstream csv(dir / "summary.csv");
-  csv << "query,method,kind,n,false_positive,false_negative,class_mismatch,undecided,error,invalid,disagreement_rate,median_ns\n";
+  csv << "query,method,kind,n,false_positive,false_negative,class_mismatch,undecided,error,invalid,disagreement_rate,median_ns,"
+         "three_valued_rate\n";
   for (auto& [key, t] : by_method_query)
     csv << std::get<0>(key) << ',' << std::get<1>(key) << ',' << t.kind << ',' << t.n << ',' << t.fp << ',' << t.fn << ',' << t.cls << ','
-        << t.undecided << ',' << t.errors << ',' << t.invalid << ',' << num(t.rate()) << ',' << num(t.median_ns()) << '\n';
+        << t.undecided << ',' << t.errors << ',' << t.invalid << ',' << num(t.rate()) << ',' << num(t.median_ns()) << ','
+        << rate3(t, std::get<1>(key)) << '\n';
   close_written(csv, dir / "summary.csv");
   std::ofstream fam(dir / "summary_families.csv");
-  fam << "query,family,method,kind,n,false_positive,false_negative,class_mismatch,undecided,error,invalid,disagreement_rate\n";
+  fam << "query,family,method,kind,n,false_positive,false_negative,class_mismatch,undecided,error,invalid,disagreement_rate,"
+         "three_valued_rate\n";
   for (auto& [key, t] : by_family)
     fam << std::get<0>(key) << ',' << std::get<1>(key) << ',' << std::get<2>(key) << ',' << t.kind << ',' << t.n << ',' << t.fp << ','
-        << t.fn << ',' << t.cls << ',' << t.undecided << ',' << t.errors << ',' << t.invalid << ',' << num(t.rate()) << '\n';
+        << t.fn << ',' << t.cls << ',' << t.undecided << ',' << t.errors << ',' << t.invalid << ',' << num(t.rate()) << ','
+        << rate3(t, std::get<2>(key)) << '\n';
   close_written(fam, dir / "summary_families.csv");
   return table;
 }

@@ -556,7 +556,7 @@ BOOST_AUTO_TEST_CASE(example_plugin_fails_where_a_double_test_fails) {
   }
   // The capsule test meets the cylinders near the caps.
   BOOST_TEST(count(csv.at({"cylinder_cylinder", "c_cap_cap"}), "false_positive") + count(csv.at({"cylinder_cylinder", "c_rim_cap"}), "false_positive") > 0);
-  // speed.csv: one row per query it exports in the study's summary.csv columns but the last,
+  // speed.csv: one row per query it exports in the study's summary.csv columns up to the timing,
   // kind judged, n its certified cases, and a per-call time that is positive and below 1 ms (a
   // double test of a few dozen operations), the same on every row.
   const auto speed = csv_records(slurp(s.dir / "results/judge/speed.csv"));
