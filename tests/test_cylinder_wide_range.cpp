@@ -22,6 +22,7 @@
 #include "test_cylinder_wide_range_cases.hpp"
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 using namespace cctest;
@@ -643,6 +644,14 @@ BOOST_AUTO_TEST_CASE(a_time_limit_that_runs_out_answers_undecided_and_says_so) {
   const auto decided = certcyl::certified_cylinder_cylinder(needle_a, needle_b);
   BOOST_TEST(decided.answer == Answer::overlapping);
   BOOST_TEST(!decided.time_limit_reached);
+  // A limit far beyond any clock (taken as 10^9 s) and NaN (no limit) leave the needles decided.
+  for (const double huge : {1e300, std::numeric_limits<double>::quiet_NaN()}) {
+    certcyl::CylinderCylinderOptions o;
+    o.time_limit_seconds = huge;
+    const auto r = certcyl::certified_cylinder_cylinder(needle_a, needle_b, o);
+    BOOST_TEST(r.answer == Answer::overlapping);
+    BOOST_TEST(!r.time_limit_reached);
+  }
   const certcyl::Cylinder<double> unit_a{{0, 0, 0}, {0, 0, 1}, 1}, unit_b{{10, 0, 0}, {10, 0, 1}, 1};
   const auto quick = certcyl::certified_cylinder_cylinder(unit_a, unit_b, limited);
   BOOST_TEST(quick.answer == Answer::separated);

@@ -202,8 +202,8 @@ struct CylinderCylinderOptions {
   // time_limit_reached set. The checks come before each stage after the optimiser, before each
   // corner plane, Gmpfr round and ellipsoid run; a check never interrupts an exact evaluation,
   // a Gmpfr round or an ellipsoid run, so the query can overrun the limit by the longest of
-  // these (on input of thousands of digits, a second or more). The study and the command's
-  // default never set it.
+  // these (on input of thousands of digits, a second or more). A limit above 10^9 s is taken as
+  // 10^9 s, and NaN as none. The study and the command's default never set it.
   double time_limit_seconds = 0;
   // Try the exact touching proofs (stages touching_exact and the reconstruction in gmpfr).
   bool prove_touching = true;
@@ -465,8 +465,10 @@ class CylinderCylinderSolver {
   }
 
   CylinderCylinderResult run() {
-    if (options_.time_limit_seconds > 0)
-      deadline_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options_.time_limit_seconds));
+    if (options_.time_limit_seconds > 0) {  // (NaN is no limit; at most 10^9 s, so that the clock's count cannot overflow)
+      const double limit = std::min(options_.time_limit_seconds, 1e9);
+      deadline_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limit));
+    }
     if (midpoints()) return finish();
     if (fast_path()) return finish();
     if (optimiser()) return finish();
