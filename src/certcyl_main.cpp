@@ -94,7 +94,14 @@ int main(int argc, char** argv) {
   query->add_option("--time-limit", options.time_limit_seconds,
                     "Seconds a certified cylinder-pair line may take before it is answered undecided with a\n"
                     "reason (checked between its stages and rounds, so it can run over; default 0: no limit)")
-      ->check(CLI::Range(0.0, 1e9));
+      ->check([](const std::string& text) {
+        // CLI::Range lets "nan" through; a limit must be a finite number of seconds.
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !(v >= 0 && v <= 1e9))
+          return "expected a number of seconds in [0, 1e9] (0: no limit), got '" + text + "'";
+        return std::string();
+      });
   query->add_flag("--line-buffered", options.line_buffered,
                   "Answer every line and flush its answer as soon as it is read (for a co-process; without it\n"
                   "lines are answered in batches, cut short whenever no more input is at hand)");

@@ -163,6 +163,9 @@ check_message() {  # expected-status expected-substring command...
 check_message 1 "--nt: unknown number type 'floaty'" "$certcyl" query --nt floaty
 check_message 1 "--cylinders: Value -5 not in range" "$certcyl" make-scene --cylinders -5
 check_message 1 "--threads: Value -1 not in range" "$certcyl" query --threads -1
+for limit in -1 abc nan inf 1e10; do
+  check_message 1 "--time-limit: expected a number of seconds in [0, 1e9] (0: no limit), got '$limit'" "$certcyl" query --time-limit "$limit"
+done
 check_message 1 "cannot open '$work/none.json': No such file or directory" "$certcyl" scene "$work/none.json"
 echo '{"cylinders": [{"name": "a", "p0": [0,0,0], "p1": [0,0,1], "radius": 1}, {"name": "a", "p0": [5,0,0], "p1": [5,0,1], "radius": 1}]}' > "$work/dup.json"
 check_message 2 'cylinders[1]: name "a" is also the name of cylinders[0]' "$certcyl" scene "$work/dup.json"
