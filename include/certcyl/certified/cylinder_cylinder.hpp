@@ -130,6 +130,7 @@
 
 #include "certcyl/answer.hpp"
 #include "certcyl/certified/detail/cylinder_active_set.hpp"
+#include "certcyl/certified/detail/cylinder_cap_disk.hpp"
 #include "certcyl/certified/detail/cylinder_certificates.hpp"
 #include "certcyl/certified/detail/cylinder_corner_plane.hpp"
 #include "certcyl/certified/detail/cylinder_ellipsoid.hpp"
@@ -200,6 +201,7 @@ struct CylinderCylinderOptions {
   // A resource limit on the query's time, in seconds. 0 (the default): none. Positive: once that
   // much wall time has passed, the query stops at its next check and answers undecided, with
   // time_limit_reached set. The checks come before each stage after the optimiser, before each
+  // group of exact candidates (the witnesses beside the ends, each cylinder's cap-disk points),
   // corner plane, Gmpfr round and ellipsoid run; a check never interrupts an exact evaluation,
   // a Gmpfr round or an ellipsoid run, so the query can overrun the limit by the longest of
   // these (on input of thousands of digits, a second or more). A limit above 10^9 s is taken as
@@ -348,53 +350,12 @@ inline std::pair<Point3<double>, Point3<double>> closest_segment_points(const Po
   return {a0 + s * e0, a1 + t * e1};
 }
 
-// Closest points of the segments [a0, a0 + e0] and [a1, a1 + e1], exactly: the parameters are
-// clamped in turn (s on the line-line optimum, t for that s, s again for that t), which gives a
-// pair of closest points of two segments; for parallel segments (a c = b^2), s is the middle of
-// the overlap of their parameter ranges on segment 0, so the points stay away from the caps.
-inline std::pair<Point3<Rational>, Point3<Rational>> exact_closest_segment_points(const Point3<Rational>& a0, const Vec3<Rational>& e0,
-                                                                                   const Point3<Rational>& a1, const Vec3<Rational>& e1) {
-  const auto clamp01 = [](const Rational& x) { return x < 0 ? Rational(0) : (x > 1 ? Rational(1) : x); };
-  const Vec3<Rational> w = a0 - a1;
-  const Rational a = dot(e0, e0), b = dot(e0, e1), c = dot(e1, e1), d = dot(e0, w), e = dot(e1, w);
-  const Rational den = a * c - b * b;
-  Rational s;
-  if (den != 0) {
-    s = clamp01((b * e - c * d) / den);
-  } else {
-    Rational t0 = -d / a, t1 = (b - d) / a;
-    if (t1 < t0) std::swap(t0, t1);
-    s = clamp01((std::max(t0, Rational(0)) + std::min(t1, Rational(1))) / 2);
-  }
-  const Rational t = clamp01((b * s + e) / c);
-  s = clamp01((b * t - d) / a);
-  return {a0 + s * e0, a1 + t * e1};
-}
-
 // The lower bound 1 / sigma of phi* from an upper bound sigma_upper of a point's scale sigma
 // (1 / phi* is the least scale), rounded down: fl(rho' fl(1 / s)) <= rho' (1 + u)^2 / s <= 1 / s.
 // 0 (no bound) unless sigma_upper is positive and finite.
 inline double phi_lower_from_sigma(double sigma_upper) {
   if (!(sigma_upper > 0) || !std::isfinite(sigma_upper)) return 0;
   return kStaticRoundDown * (1 / sigma_upper);
-}
-
-// floor(log2 |q|) within one, for q != 0 (exactly, for a dyadic q).
-inline long binade(const Rational& q) {
-  return static_cast<long>(mpz_sizeinbase(mpq_numref(q.mpq()), 2)) - static_cast<long>(mpz_sizeinbase(mpq_denref(q.mpq()), 2));
-}
-
-// floor(log2 |x|) of a dyadic x != 0, exactly: from CGAL's enclosure of x between two doubles
-// when both ends lie in one binade (then x does too), else (x just below a power of two, or
-// below the normal range, where the enclosure widens to 0) from x in Gmpq.
-inline long binade(const CGAL::Mpzf& x) {
-  const std::pair<double, double> b = CGAL::to_interval(x);
-  const double lo = std::min(std::abs(b.first), std::abs(b.second)), hi = std::max(std::abs(b.first), std::abs(b.second));
-  if (lo >= std::numeric_limits<double>::min() && std::isfinite(hi) && (b.first < 0) == (b.second < 0)) {
-    const int e = std::ilogb(lo);
-    if (e == std::ilogb(hi)) return e;
-  }
-  return binade(Rational(static_cast<CGAL::Gmpq>(x)));
 }
 
 // The span in binades of an exact pair (CylinderCylinderOptions::max_precision): from the
@@ -1224,7 +1185,8 @@ class CylinderCylinderSolver {
 
   // A0, A1, A0 x A1 and the parts of T orthogonal to each axis, exactly: the contact normals of
   // cap and wall contacts (detail/cylinder_rim_contacts.hpp), and separating candidates.
-  static std::array<Vec3<Rational>, 5> structural_directions(const CylinderPair<Rational>& e) {
+  template <class R>
+  static std::array<Vec3<R>, 5> structural_directions(const CylinderPair<R>& e) {
     return {e.A0, e.A1, cross(e.A0, e.A1), e.AA0 * e.T - dot(e.A0, e.T) * e.A0, e.AA1 * e.T - dot(e.A1, e.T) * e.A1};
   }
 
@@ -1338,29 +1300,73 @@ class CylinderCylinderSolver {
 
   // Exact candidates, before any Gmpfr round: the midpoints m0, m1 as witnesses (each is interior
   // to its own cylinder; in double they may be rounded off a needle's axis), and the directions
-  // T, its parts orthogonal to each axis, A0, A1 and A0 x A1, in Gmpq; then the exact closest
-  // points c0, c1 of the axis segments: their r0:r1 division point and midpoint as witnesses and
-  // c1 - c0 as a direction. These decide every pair whose contact is between the walls away from
-  // the caps at any distance from touching: with c0, c1 interior to the axis segments and
+  // T, its parts orthogonal to each axis, A0, A1 and A0 x A1; then the exact closest points c0,
+  // c1 of the axis segments: their r0:r1 division point and midpoint as witnesses and c1 - c0 as
+  // a direction. These decide every pair whose contact is between the walls away from the caps
+  // at any distance from touching: with c0, c1 interior to the axis segments and
   // d = |c1 - c0|, the r0:r1 point is at distance r0 d / (r0 + r1) < r0 from axis 0 and
   // r1 d / (r0 + r1) < r1 from axis 1 when d < r0 + r1, and c1 - c0, orthogonal to both axes,
-  // separates when d > r0 + r1.
+  // separates when d > r0 + r1. In the ring frame when the pair has one (Mpzf, in homogeneous
+  // coordinates: no division, no gcd), else on the input in Gmpq.
   bool exact_candidates() {
     if (exact_candidates_tried_) return false;
     exact_candidates_tried_ = true;
-    const CylinderPair<Rational>& e = exact();
-    if (!(e.T.x == 0 && e.T.y == 0 && e.T.z == 0) && exact_separates(e.T)) return true;
-    for (const Vec3<Rational>& D : structural_directions(e))
-      if (!(D.x == 0 && D.y == 0 && D.z == 0) && exact_separates(D)) return true;
-    for (const Cylinder<Rational>* c : {&e.c0, &e.c1})
-      if (exact_overlaps(c->p0 + (c->p1 - c->p0) / Rational(2))) return true;
-    const auto [c0, c1] = exact_closest_segment_points(e.c0.p0, e.A0, e.c1.p0, e.A1);
-    const Vec3<Rational> between = c1 - c0;
-    if (!(between.x == 0 && between.y == 0 && between.z == 0) && exact_separates(between)) return true;
-    const Rational share = e.c0.radius / (e.c0.radius + e.c1.radius);
-    if (exact_overlaps(c0 + share * between) || exact_overlaps(c0 + between / Rational(2))) return true;
-    return end_disc_witness(0) || end_disc_witness(1) || tube_shift_witness(c1, c0, 1) || tube_shift_witness(c0, c1, 0) ||
-           mid_plane_witness();
+    return ring() ? exact_candidates(ring()->pair) : exact_candidates(exact());
+  }
+  template <class R>
+  static bool is_zero_vector(const Vec3<R>& v) {
+    return CGAL::is_zero(v.x) && CGAL::is_zero(v.y) && CGAL::is_zero(v.z);
+  }
+  template <class R>
+  bool exact_candidates(const CylinderPair<R>& e) {
+    if (!is_zero_vector(e.T) && exact_separates(e.T)) return true;
+    for (const Vec3<R>& D : structural_directions(e))
+      if (!is_zero_vector(D) && exact_separates(D)) return true;
+    const R two(2);
+    for (const Cylinder<R>* c : {&e.c0, &e.c1})
+      if (exact_overlaps(HomogeneousPoint<R>{c->p0 + c->p1, two})) return true;
+    const auto [c0, c1] = closest_axis_points(e);
+    const Vec3<R> between = c1.n * c0.w - c0.n * c1.w;  // c0.w c1.w (c1 - c0)
+    if (!is_zero_vector(between) && exact_separates(between)) return true;
+    // c0 + r0 / (r0 + r1) (c1 - c0) and (c0 + c1) / 2, over c0.w c1.w (r0 + r1) and 2 c0.w c1.w.
+    const R rr = e.c0.radius + e.c1.radius, ww = c0.w * c1.w;
+    const Vec3<R> c0n = c1.w * c0.n, c1n = c0.w * c1.n;
+    if (exact_overlaps(HomogeneousPoint<R>{e.c1.radius * c0n + e.c0.radius * c1n, rr * ww}) ||
+        exact_overlaps(HomogeneousPoint<R>{c0n + c1n, two * ww}))
+      return true;
+    if (out_of_time()) return false;
+    return end_disc_witness(e, 0) || end_disc_witness(e, 1) || tube_shift_witness(e, c1, c0, 1) || tube_shift_witness(e, c0, c1, 0) ||
+           mid_plane_witness(e);
+  }
+
+  // Closest points of the axis segments p0_i + s A_i (s in [0, 1]), exactly: the parameters are
+  // clamped in turn (s on the line-line optimum, t for that s, s again for that t), which gives a
+  // pair of closest points of two segments; for parallel axes (a c = b^2), s is the middle of the
+  // overlap of their parameter ranges on segment 0, so the points stay away from the caps. In
+  // homogeneous coordinates: each parameter is n / d (d > 0), clamped by comparing n with 0 and d.
+  template <class R>
+  static std::pair<HomogeneousPoint<R>, HomogeneousPoint<R>> closest_axis_points(const CylinderPair<R>& e) {
+    const R zero(0), one(1), two(2);
+    struct Fraction {
+      R n, d;  // n / d, d > 0
+    };
+    const auto clamp01 = [&](R n, R d) { return n < zero ? Fraction{zero, one} : (n > d ? Fraction{one, one} : Fraction{std::move(n), std::move(d)}); };
+    const Vec3<R> w = e.c0.p0 - e.c1.p0;
+    const R& a = e.AA0;
+    const R& c = e.AA1;
+    const R b = dot(e.A0, e.A1), d = dot(e.A0, w), f = dot(e.A1, w);
+    const R den = a * c - b * b;
+    Fraction s;
+    if (den != zero) {
+      s = clamp01(b * f - c * d, den);
+    } else {  // parallel axes: the middle of the overlap of the parameter ranges, over 2 a
+      R t0 = -d, t1 = b - d;
+      if (t1 < t0) std::swap(t0, t1);
+      s = clamp01((t0 > zero ? t0 : zero) + (t1 < a ? t1 : a), two * a);
+    }
+    const Fraction t = clamp01(b * s.n + f * s.d, c * s.d);
+    s = clamp01(b * t.n - d * t.d, a * t.d);
+    return {HomogeneousPoint<R>{s.d * e.c0.p0 + s.n * e.A0, s.d}, HomogeneousPoint<R>{t.d * e.c1.p0 + t.n * e.A1, t.d}};
   }
 
   // Points of j's tube beside the closest point c_j of its axis to i's: X = c_j + s w, w the part
@@ -1368,14 +1374,19 @@ class CylinderCylinderSolver {
   // |s w| <= r_j sqrt(3) / 2 < r_j: X is inside j's tube when c_j is interior to its axis
   // segment). They find the overlap of a thin cylinder whose tube, not its axis, reaches into the
   // other's slab (the sliver between a cap plane and the side of a tube it crosses).
-  bool tube_shift_witness(const Point3<Rational>& cj_point, const Point3<Rational>& ci_point, int j) {
-    const auto [cj, ci, Aj, Ai, AAj, AAi] = roles(j);
-    for (const Vec3<Rational>& d : {Ai, Vec3<Rational>(-Ai), Vec3<Rational>(ci_point - cj_point)}) {
-      const Vec3<Rational> w = AAj * d - dot(d, Aj) * Aj;
-      const Rational w_max = largest(w);
-      if (w_max == 0) continue;
-      const Rational s = cj.radius / (2 * w_max);
-      if (exact_overlaps(cj_point + s * w) || exact_overlaps(cj_point + (s / Rational(2)) * w)) return true;
+  template <class R>
+  bool tube_shift_witness(const CylinderPair<R>& e, const HomogeneousPoint<R>& cj_point, const HomogeneousPoint<R>& ci_point, int j) {
+    const auto [cj, ci, Aj, Ai, AAj, AAi] = roles(e, j);
+    const Vec3<R> towards = ci_point.n * cj_point.w - cj_point.n * ci_point.w;  // a positive multiple of c_i - c_j
+    const R two(2), four(4);
+    for (const Vec3<R>& d : {Ai, Vec3<R>(-Ai), towards}) {
+      const Vec3<R> w = AAj * d - dot(d, Aj) * Aj;
+      const R w_max = largest(w);
+      if (CGAL::is_zero(w_max)) continue;
+      // c_j + r_j w / (k w_max) = (k w_max n + W r_j w) / (k w_max W), k = 2 and 4.
+      const Vec3<R> shift = (cj_point.w * cj.radius) * w;
+      for (const R& k : {two, four})
+        if (exact_overlaps(HomogeneousPoint<R>{(k * w_max) * cj_point.n + shift, k * w_max * cj_point.w})) return true;
     }
     return false;
   }
@@ -1385,24 +1396,24 @@ class CylinderCylinderSolver {
   // |X - m_i| < r_i for both. Candidates: the points of the line nearest m0 and m1, and the
   // r0 : r1 point between them. They decide two flat cylinders (radius far above height) whose
   // slabs cross inside both tubes, however far from the axes.
-  // The point of span(A, B) on the planes A.X = h and B.X = k (A x B != 0, |A x B|^2 = LL).
-  static Point3<Rational> planes_meet(const Vec3<Rational>& A, const Rational& h, const Vec3<Rational>& B, const Rational& k,
-                                      const Rational& LL) {
-    const Rational AA = dot(A, A), BB = dot(B, B), AB = dot(A, B);
-    return ((h * BB - k * AB) / LL) * A + ((k * AA - h * AB) / LL) * B;
-  }
-  bool mid_plane_witness() {
-    const CylinderPair<Rational>& e = exact();
-    const Vec3<Rational> L = cross(e.A0, e.A1);
-    if (L.x == 0 && L.y == 0 && L.z == 0) return false;
-    const Rational LL = dot(L, L);
-    const Point3<Rational> m0 = e.c0.p0 + e.A0 / Rational(2), m1 = e.c1.p0 + e.A1 / Rational(2);
-    const Point3<Rational> X0 = planes_meet(e.A0, dot(e.A0, m0), e.A1, dot(e.A1, m1), LL);
-    const Rational t0 = dot(m0 - X0, L) / LL, t1 = dot(m1 - X0, L) / LL;
-    const Rational share = e.c0.radius / (e.c0.radius + e.c1.radius);
-    for (const Rational& t : {t0, t1, Rational(t0 + share * (t1 - t0))})
-      if (exact_overlaps(X0 + t * L)) return true;
-    return false;
+  // With M_i = 2 m_i and h_i = 2 A_i.m_i, the line's point X0 = N0 / (2 LL) (LL = |A0 x A1|^2),
+  // N0 = (h0 A1.A1 - h1 A0.A1) A0 + (h1 A0.A0 - h0 A0.A1) A1, and the point nearest m_i is
+  // X0 + tau_i L / (2 LL^2) = (LL N0 + tau_i L) / (2 LL^2), tau_i = (LL M_i - N0).L.
+  template <class R>
+  bool mid_plane_witness(const CylinderPair<R>& e) {
+    const Vec3<R> L = cross(e.A0, e.A1);
+    if (is_zero_vector(L)) return false;
+    const R two(2);
+    const R LL = dot(L, L), AB = dot(e.A0, e.A1);
+    const Vec3<R> M0 = two * e.c0.p0 + e.A0, M1 = two * e.c1.p0 + e.A1;
+    const R h0 = dot(e.A0, M0), h1 = dot(e.A1, M1);
+    const Vec3<R> N0 = (h0 * e.AA1 - h1 * AB) * e.A0 + (h1 * e.AA0 - h0 * AB) * e.A1;
+    const R tau0 = dot(LL * M0 - N0, L), tau1 = dot(LL * M1 - N0, L), W = two * LL * LL;
+    const Vec3<R> base = LL * N0;
+    if (exact_overlaps(HomogeneousPoint<R>{base + tau0 * L, W}) || exact_overlaps(HomogeneousPoint<R>{base + tau1 * L, W})) return true;
+    // tau0 + r0 / (r0 + r1) (tau1 - tau0), over r0 + r1.
+    const R rr = e.c0.radius + e.c1.radius;
+    return exact_overlaps(HomogeneousPoint<R>{rr * base + (e.c1.radius * tau0 + e.c0.radius * tau1) * L, rr * W});
   }
 
   // Corner candidates (detail/cylinder_corner_plane.hpp), for each cylinder i against the other,
@@ -1462,7 +1473,7 @@ class CylinderCylinderSolver {
     for (const int i : {larger, 1 - larger}) {
       const Cylinder<R>& ci = i == 0 ? e.c0 : e.c1;
       const Cylinder<R>& cj = i == 0 ? e.c1 : e.c0;
-      Point3<R> y = cj.p0 + cj.axis() * corner_two_power<R>(-1);
+      Point3<R> y = cj.p0 + cj.axis() * ring_two_power<R>(-1);
       long precision = first_precision;
       int first_pass = 0;
       if (!first_call) {
@@ -1523,190 +1534,137 @@ class CylinderCylinderSolver {
   }
 
   // Cylinder j of the exact pair and the other one, i, with their axes and squared lengths.
+  // Cylinder j of a pair and the other one, i, with their axes and squared lengths.
+  template <class R>
   struct Roles {
-    const Cylinder<Rational>& cj;
-    const Cylinder<Rational>& ci;
-    const Vec3<Rational>& Aj;
-    const Vec3<Rational>& Ai;
-    const Rational& AAj;
-    const Rational& AAi;
+    const Cylinder<R>& cj;
+    const Cylinder<R>& ci;
+    const Vec3<R>& Aj;
+    const Vec3<R>& Ai;
+    const R& AAj;
+    const R& AAi;
   };
-  Roles roles(int j) {
-    const CylinderPair<Rational>& e = exact();
-    return j == 0 ? Roles{e.c0, e.c1, e.A0, e.A1, e.AA0, e.AA1} : Roles{e.c1, e.c0, e.A1, e.A0, e.AA1, e.AA0};
+  template <class R>
+  static Roles<R> roles(const CylinderPair<R>& e, int j) {
+    return j == 0 ? Roles<R>{e.c0, e.c1, e.A0, e.A1, e.AA0, e.AA1} : Roles<R>{e.c1, e.c0, e.A1, e.A0, e.AA1, e.AA0};
   }
+  Roles<Rational> roles(int j) { return roles(exact(), j); }
 
   // Points of an end disc of cylinder j, for an end E of j that lies in the closed cylinder i
   // (a thin cylinder ending on or in the other, whose common interior can be a sliver of its end
   // disc, far below any rounded optimiser's reach): X = E + s w - eta A (A = j's axis pointing
   // out of j at E), with w the part orthogonal to A of a direction into i (A_i, -A_i, towards
   // i's axis), s = r_j / (4 max |w_k|) so that |s w| < r_j / 2 (X is interior to j for every
-  // 0 < eta < 1), and eta = s max|w_k| / max|A_k| 2^-k for a few k. Each is checked exactly.
-  static Rational largest(const Vec3<Rational>& v) {
-    Rational m = 0;
-    for (const Rational* q : {&v.x, &v.y, &v.z}) m = std::max(m, *q < 0 ? Rational(-*q) : *q);
+  // 0 < eta < 1), and eta = s max|w_k| / max|A_k| 2^-4k for k = 1, 2, 3: over
+  // D = 4 max|w_k| max|A_k|, X = (D E + r_j max|A_k| w - r_j max|w_k| 2^-4k A) / D. Each is
+  // checked exactly.
+  template <class R>
+  static R largest(const Vec3<R>& v) {
+    R m(0);
+    for (const R* q : {&v.x, &v.y, &v.z})
+      if (const R a = *q < 0 ? R(-*q) : *q; a > m) m = a;
     return m;
   }
-  bool end_disc_witness(int j) {
-    const auto [cj, ci, Aj, Ai, AAj, AAi] = roles(j);
-    const Rational a_max = largest(Aj);
-    const Point3<Rational> mi = ci.p0 + (ci.p1 - ci.p0) / Rational(2);
+  template <class R>
+  bool end_disc_witness(const CylinderPair<R>& e, int j) {
+    const auto [cj, ci, Aj, Ai, AAj, AAi] = roles(e, j);
+    const R a_max = largest(Aj), two(2), four(4);
     for (const bool far_end : {false, true}) {
-      const Point3<Rational>& E = far_end ? cj.p1 : cj.p0;
+      const Point3<R>& E = far_end ? cj.p1 : cj.p0;
       if (classify_point(E, ci) == Side::outside) continue;
-      const Vec3<Rational> out = far_end ? Aj : Vec3<Rational>(-Aj);  // out of j at E
+      const Vec3<R> out = far_end ? Aj : Vec3<R>(-Aj);  // out of j at E
       if (deep_end_witness(E, out, ci, Ai, AAi, AAj)) return true;
-      const Vec3<Rational> towards_axis = (mi - E) - (dot(mi - E, Ai) / dot(Ai, Ai)) * Ai;
-      for (const Vec3<Rational>& d : {Ai, Vec3<Rational>(-Ai), towards_axis}) {
-        const Vec3<Rational> w = AAj * d - dot(d, Aj) * Aj;
-        const Rational w_max = largest(w);
-        if (w_max == 0) continue;
-        const Rational s = cj.radius / (4 * w_max);
-        Rational eta = s * w_max / a_max;
-        for (int k = 0; k < 3; ++k) {
-          eta = eta / 16;
-          if (exact_overlaps(E + s * w - eta * out)) return true;
-        }
+      const Vec3<R> M = (ci.p0 + ci.p1) - two * E;  // 2 (m_i - E)
+      const Vec3<R> towards_axis = AAi * M - dot(M, Ai) * Ai;
+      for (const Vec3<R>& d : {Ai, Vec3<R>(-Ai), towards_axis}) {
+        const Vec3<R> w = AAj * d - dot(d, Aj) * Aj;
+        const R w_max = largest(w);
+        if (CGAL::is_zero(w_max)) continue;
+        const R D = four * w_max * a_max;
+        const Vec3<R> base = D * E + (cj.radius * a_max) * w, step = (cj.radius * w_max) * out;
+        for (int k = 1; k <= 3; ++k)
+          if (exact_overlaps(HomogeneousPoint<R>{base - ring_two_power<R>(-4 * k) * step, D})) return true;
       }
     }
     return false;
   }
 
-  // floor(log2) (within a few) of a lower bound on the distance of Y from the boundary of
-  // cylinder c when Y is strictly inside it: the least of its distances to the cap planes,
-  // m / |A| with m = min(u, A.A - u), u = (Y - p0).A, and to the wall,
-  // r - |x| / |A| >= (r^2 A.A - |x|^2) / (2 r A.A) with x = (Y - p0) x A; nullopt otherwise.
-  // On common denominators: V = d (Y - p0) and P = a A integers (d, a the least common multiples
-  // of the denominators), so that the products carry no gcds (which made this the larger part of
-  // the cap-disk candidates' cost on input spanning hundreds of binades). Then
-  //   u d a^2 = a V.P,  (A.A - u) d a^2 = d P.P - a V.P,
-  //   tube (r_d d a)^2 = r_n^2 d^2 P.P - r_d^2 |V x P|^2   (r = r_n / r_d),
-  // and a binade is read off a numerator and denominator as binade() reads a Rational's.
-  static std::optional<long> depth_binade(const Point3<Rational>& Y, const Cylinder<Rational>& c, const Vec3<Rational>& A,
-                                          const Rational& AA) {
-    using Z = CGAL::Gmpz;
-    Z d = 1, a = 1;
-    for (const Rational* q : {&Y.x, &Y.y, &Y.z, &c.p0.x, &c.p0.y, &c.p0.z}) mpz_lcm(d.mpz(), d.mpz(), mpq_denref(q->mpq()));
-    for (const Rational* q : {&A.x, &A.y, &A.z}) mpz_lcm(a.mpz(), a.mpz(), mpq_denref(q->mpq()));
-    const auto integers = [](const Vec3<Rational>& v, const Z& l) { return v.map([&l](const Rational& q) { return scaled_integer(q, l); }); };
-    const Vec3<Z> V = integers(Y, d) - integers(c.p0, d), P = integers(A, a);
-    const Z VP = dot(V, P), PP = dot(P, P);
-    const Z u = a * VP, rest = d * PP - u;
-    if (CGAL::sign(u) != CGAL::POSITIVE || CGAL::sign(rest) != CGAL::POSITIVE) return std::nullopt;
-    const Vec3<Z> X = cross(V, P);
-    const Z rn = c.radius.numerator(), rd = c.radius.denominator();
-    const Z tube = rn * rn * d * d * PP - rd * rd * dot(X, X);
-    if (CGAL::sign(tube) != CGAL::POSITIVE) return std::nullopt;
-    const auto bits = [](const Z& z) { return static_cast<long>(mpz_sizeinbase(z.mpz(), 2)); };
-    const Z daa = d * a * a, rda = rd * d * a;
-    const long m_binade = bits(std::min(u, rest)) - bits(daa), tube_binade = bits(tube) - bits(rda * rda);
-    return std::min(m_binade - binade(AA) / 2, tube_binade - binade(AA) - binade(c.radius) - 1);
-  }
-
   // Y + 2^-k V for the k that makes |2^-k V| a few binades below 2^depth, and 16 binades further
-  // (candidates only: each point is checked exactly).
-  bool stepped_witness(const Point3<Rational>& Y, const Vec3<Rational>& V, const Rational& VV, long depth) {
+  // (candidates only: each point is checked exactly). Y = n / w homogeneous, in R.
+  template <class R>
+  bool stepped_witness(const HomogeneousPoint<R>& Y, const Vec3<R>& V, const R& VV, long depth) {
     const long k = std::max(1L, binade(VV) / 2 - depth + 4);
     for (const long shift : {k, k + 16})
-      if (exact_overlaps(Y + V.map([shift](const Rational& q) { return times_two_power(q, -shift); }))) return true;
+      if (exact_overlaps(HomogeneousPoint<R>{Y.n + (Y.w * ring_two_power<R>(-shift)) * V, Y.w})) return true;
     return false;
   }
 
   // An end E of j strictly inside i: E - eta A (A out of j at E) is on j's open axis segment for
   // 0 < eta < 1 and inside i while eta |A| is below E's depth in i (depth_binade). It decides an
   // end poking 2^-100 or 2^-1000 into the other cylinder, whatever the sizes.
-  bool deep_end_witness(const Point3<Rational>& E, const Vec3<Rational>& out, const Cylinder<Rational>& ci, const Vec3<Rational>& Ai,
-                        const Rational& AAi, const Rational& AAj) {
-    const std::optional<long> depth = depth_binade(E, ci, Ai, AAi);
-    return depth && stepped_witness(E, -out, AAj, *depth);
+  template <class R>
+  bool deep_end_witness(const Point3<R>& E, const Vec3<R>& out, const Cylinder<R>& ci, const Vec3<R>& Ai, const R& AAi, const R& AAj) {
+    const HomogeneousPoint<R> Y{E, R(1)};
+    const std::optional<long> depth = depth_binade(Y, ci, Ai, AAi);
+    return depth && stepped_witness(Y, Vec3<R>(-out), AAj, *depth);
   }
 
-  // Points of a cap disk of i strictly inside j, pushed into i: on the cap plane through the end
-  // E (inward normal n = +-A_i), Y is the point where j's axis line crosses it, the point
-  // nearest E of the line where it meets j's mid-plane, or the point nearest E of j's axis line
-  // projected orthogonally onto it (the cap plane's points nearest j's axis: where a wall of j
-  // lying along the cap plane, or dipping below a cap tilted by far less than an ulp, is
-  // deepest). When Y is in the open disk (|Y - E| < r_i) and strictly inside j, Y + eta n is
+  // Points of a cap disk of i strictly inside j, pushed into i (detail/cylinder_cap_disk.hpp):
+  // on the cap plane through the end E (inward normal n = +-A_i), Y where j's axis line crosses
+  // it, the point nearest E of the line where it meets j's mid-plane, or the point nearest E of
+  // j's axis line projected orthogonally onto it (the cap plane's points nearest j's axis: where
+  // a wall of j lying along the cap plane, or dipping below a cap tilted by far less than an ulp,
+  // is deepest). When Y is in the open disk (|Y - E| < r_i) and strictly inside j, Y + eta n is
   // interior to both for eta |A_i| below both Y's depth in j and r_i - |Y - E| >=
   // (r_i^2 - |Y - E|^2) / (2 r_i). They decide flat cylinders whose slabs overlap only far from
   // the axes, beside a cap of one of them, and walls sunk 2^-1000 into a cap.
   // Once per query, after the corner candidates (they cost a few exact checks of large numbers,
-  // which most pairs reaching the exact candidates do not need).
+  // which most pairs reaching the exact candidates do not need). In the ring frame when the pair
+  // has one (Mpzf, homogeneous: no gcds), else on the input in Gmpq.
   bool cap_disk_candidates() {
     if (cap_disks_tried_) return false;
     cap_disks_tried_ = true;
-    return cap_disk_witness(0, false) || cap_disk_witness(1, false) || cap_disk_witness(0, true) || cap_disk_witness(1, true);
+    for (const bool rim : {false, true})
+      for (const int i : {0, 1}) {
+        if (out_of_time()) return false;
+        if (ring() ? cap_disk_witness(ring()->pair, i, rim) : cap_disk_witness(exact(), i, rim)) return true;
+      }
+    return false;
   }
   // rim: the rim points (they need square roots at the input's span, or Gmpfr iterations at twice
   // it), after the others failed.
-  bool cap_disk_witness(int i, bool rim) {
-    const auto [ci, cj, Ai, Aj, AAi, AAj] = roles(i);
-    const Point3<Rational> mj = cj.p0 + Aj / Rational(2);
+  template <class R>
+  bool cap_disk_witness(const CylinderPair<R>& e, int i, bool rim) {
+    const Cylinder<R>& ci = i == 0 ? e.c0 : e.c1;
+    const Cylinder<R>& cj = i == 0 ? e.c1 : e.c0;
+    const Vec3<R>& Ai = i == 0 ? e.A0 : e.A1;
+    const Vec3<R>& Aj = i == 0 ? e.A1 : e.A0;
+    const R& AAi = i == 0 ? e.AA0 : e.AA1;
+    const R& AAj = i == 0 ? e.AA1 : e.AA0;
+    const long ri_binade = binade(ci.radius);
     for (const bool far_end : {false, true}) {
-      const Point3<Rational>& E = far_end ? ci.p1 : ci.p0;
-      const Vec3<Rational> n = far_end ? Vec3<Rational>(-Ai) : Ai;  // into i
-      std::vector<std::optional<Point3<Rational>>> Y(5);
-      const Rational a = dot(Aj, Ai);
-      if (!rim && a != 0) Y[0] = cj.p0 + (dot(E - cj.p0, Ai) / a) * Aj;  // j's axis line on the cap plane
-      const Vec3<Rational> L = cross(Ai, Aj);
-      if (!rim && !(L.x == 0 && L.y == 0 && L.z == 0)) {
-        // The line {(X - E).A_i = 0} n {(X - m_j).A_j = 0}: a point X0 of it, then the nearest to E.
-        const Rational LL = dot(L, L);
-        const Point3<Rational> X0 = planes_meet(Ai, dot(Ai, E), Aj, dot(Aj, mj), LL);
-        Y[1] = X0 + (dot(E - X0, L) / LL) * L;
-        // j's axis projected onto the cap plane: through Q0 along P = A_j - (a / A_i.A_i) A_i
-        // (not zero: A_i x A_j != 0), and its point nearest E.
-        const Vec3<Rational> P = Aj - (a / AAi) * Ai;
-        const Point3<Rational> Q0 = cj.p0 - (dot(cj.p0 - E, Ai) / AAi) * Ai;
-        Y[2] = Q0 + (dot(E - Q0, P) / dot(P, P)) * P;
-      }
-      // The points of i's rim deepest into the half-space of each cap of j (inward normal m):
-      // E + r_i u / s with u the part of m in the cap plane and s >= |u| (|u| at q = span + 128
-      // bits, then raised by 2^(2 - q): a rim crossing a cap plane by 2^-800 beside numbers
-      // spanning 800 binades), so in the closed disk, at most about 2^(2 - q) r_i in.
-      for (const bool j_far : {false, true}) {
-        if (!rim) break;
-        const Vec3<Rational> m = j_far ? Vec3<Rational>(-Aj) : Aj;
-        const Vec3<Rational> u = m - (dot(m, Ai) / AAi) * Ai;
-        const Rational uu = dot(u, u);
-        if (uu == 0) continue;
-        const long q = input_span_bits() + 128;
-        Rational s;
-        {
-          GmpfrPrecision scope(q);
-          s = to_rational(CGAL::sqrt(nt::from_rational<CGAL::Gmpfr>(uu)));
-        }
-        s = s + times_two_power(s, 2 - q);
-        Y[3 + j_far] = E + (ci.radius / s) * u;
-      }
-      // The points of i's rim nearest j's axis line (detail/cylinder_rim_nearest.hpp): where a cap
-      // disk tilted far below an ulp against j's wall, or a wall grazing i's cap plane beside the
-      // rim, dips into j. At twice the input's span plus 128 bits: such a dip is about 2^-(4/3 s)
-      // deep in the numbers spanning s binades of the pairs found by the fuzz harness.
-      if (rim)
-        for (Point3<Rational>& y : rim_points_nearest_line(E, Ai, ci.radius, cj.p0, Aj, cj.radius, 2 * input_span_bits() + 128))
-          Y.emplace_back(std::move(y));
-      const Rational& ri = ci.radius;  // plain references: clang before 16 cannot capture structured bindings
-      const Rational& AAi_ = AAi;
-      const auto try_point = [&](const Point3<Rational>& y, const std::optional<long>& depth) {
-        const Vec3<Rational> radial = y - E;
-        const Rational disk = ri * ri - dot(radial, radial);
-        return disk > 0 && depth && stepped_witness(y, n, AAi_, std::min(*depth, binade(disk) - binade(ri) - 1));
+      const Point3<R>& E = far_end ? ci.p1 : ci.p0;
+      const Vec3<R> n = far_end ? Vec3<R>(-Ai) : Ai;  // into i
+      // Y in the open disk, pushed into i by less than both its depth in j and its room in the disk.
+      const auto try_point = [&](const HomogeneousPoint<R>& y, const std::optional<long>& depth) {
+        if (!depth) return false;
+        const Vec3<R> radial = y.n - y.w * E;
+        const R disk = ci.radius * ci.radius * y.w * y.w - dot(radial, radial);  // w^2 (r_i^2 - |Y - E|^2)
+        return disk > 0 && stepped_witness(y, n, AAi, std::min(*depth, binade(disk) - 2 * binade(y.w) - ri_binade - 1));
       };
-      for (const std::optional<Point3<Rational>>& y : Y) {
-        if (!y) continue;
-        const std::optional<long> depth = depth_binade(*y, cj, Aj, AAj);
+      for (const HomogeneousPoint<R>& y : cap_disk_points(e, i, far_end, rim, input_span_bits())) {
+        const std::optional<long> depth = depth_binade(y, cj, Aj, AAj);
         if (!depth) continue;
-        if (try_point(*y, depth)) return true;
+        if (try_point(y, depth)) return true;
         // Y on the rim or just outside it (a line of j tangent to i's rim, tilted far below an
         // ulp): Y pulled toward E by about 2^(depth - 2), which keeps it inside j, and by about
         // 2^(3 depth / 4), which keeps it inside j where j's boundary is tangent to the pull (a
         // loss of about 2^(3 depth / 2) / r_j) and clears an overshoot of about 2^depth.
-        const Vec3<Rational> radial = *y - E;
+        const Vec3<R> radial = y.n - y.w * E;
         for (const long pull : {*depth - 2, 3 * *depth / 4}) {
-          const long t = binade(ci.radius) - pull;
+          const long t = ri_binade - pull;
           if (t <= 1) continue;
-          const Point3<Rational> z = *y - radial.map([t](const Rational& q) { return times_two_power(q, -t); });
+          const HomogeneousPoint<R> z{y.n - ring_two_power<R>(-t) * radial, y.w};
           if (try_point(z, depth_binade(z, cj, Aj, AAj))) return true;
         }
       }
@@ -1717,8 +1675,8 @@ class CylinderCylinderSolver {
   // An input-frame rational direction or point, checked exactly; decides when it proves. With a
   // ring frame the check runs there, without a gcd: D as the parallel integer direction
   // (ring_direction), X = U / q (U integers, q > 0 the least common multiple of its denominators)
-  // as the homogeneous ring point n / q, n = s U, tested against the ring cylinders scaled by q
-  // (every slack of classify_point is homogeneous in the lengths). Else in Gmpq. On input of
+  // as the homogeneous ring point n / q, n = s U, whose slacks of classify_point times powers of q
+  // are polynomials in n and q (interior_slacks). Else in Gmpq. On input of
   // thousands of bits the Gmpq checks spent most of their time in gcds.
   bool exact_separates(Vec3<Rational> D) {
     ++result_.counters.directions_checked;
@@ -1740,9 +1698,23 @@ class CylinderCylinderSolver {
       const CGAL::Mpzf y = mpzf_times_two_power(u, f.e);
       return f.L != 1 ? CGAL::Mpzf(y * f.L_mpzf) : y;
     });
-    const CGAL::Mpzf w = mpzf_from_integer(q);
-    const auto scaled = [&w](const Cylinder<CGAL::Mpzf>& c) { return Cylinder<CGAL::Mpzf>{w * c.p0, w * c.p1, w * c.radius}; };
-    return classify_point(n, scaled(f.pair.c0)) == Side::inside && classify_point(n, scaled(f.pair.c1)) == Side::inside;
+    return ring_strictly_inside_both({n, mpzf_from_integer(q)});
+  }
+  // The ring point n / w, w > 0, by the slacks of classify_point times powers of w (interior_slacks).
+  bool ring_strictly_inside_both(const HomogeneousPoint<CGAL::Mpzf>& X) {
+    const CylinderPair<CGAL::Mpzf>& d = ring()->pair;
+    return interior_slacks(X, d.c0, d.A0, d.AA0) && interior_slacks(X, d.c1, d.A1, d.AA1);
+  }
+  // A homogeneous point of the ring frame (Mpzf) or of the input (Rational), checked exactly.
+  bool exact_overlaps(const HomogeneousPoint<CGAL::Mpzf>& X) {
+    ++result_.counters.points_checked;
+    ++result_.counters.exact_checks;
+    last_check_ = CylinderArithmetic::exact;
+    const RingFrame& f = *ring();
+    return ring_strictly_inside_both(X) && overlapping_at(X.n.map([&](const CGAL::Mpzf& x) { return f.to_input(x, X.w); }));
+  }
+  bool exact_overlaps(const HomogeneousPoint<Rational>& X) {
+    return exact_overlaps(X.w == 1 ? X.n : X.n.map([&X](const Rational& q) { return Rational(q / X.w); }));
   }
 
   // The best point of the segment between the midpoints, X = m0 + t T / 2 with t = s1 / (s0 + s1),
@@ -1948,15 +1920,16 @@ class CylinderCylinderSolver {
     const CylinderPair<Rational>& e = exact();
     if (e.T.x == 0 && e.T.y == 0 && e.T.z == 0) return false;
     begin(CylinderStage::gmpfr);
-    if (exact_candidates() || axis_candidates() || corner_candidates(kCornerFirstCap)) return true;
-    if (ring() && touching_exact()) return true;
+    if (exact_candidates() || (!out_of_time() && axis_candidates()) || corner_candidates(kCornerFirstCap)) return true;
+    if (ring() && !out_of_time() && touching_exact()) return true;
     begin(CylinderStage::gmpfr);
     if (corner_candidates(kCornerMaxPrecision) || cap_disk_candidates()) return true;
+    if (out_of_time()) return pass();
     switch_stage(CylinderStage::ellipsoid);
     result_.ellipsoid_precision = 128;
     ellipsoid_problems();
-    return point_run(*point_problem_, EllipsoidMode::fast, 128, 24) || direction_run(*direction_problem_, EllipsoidMode::fast, 128, 24) ||
-           pass();
+    return point_run(*point_problem_, EllipsoidMode::fast, 128, 24) ||
+           (!out_of_time() && direction_run(*direction_problem_, EllipsoidMode::fast, 128, 24)) || pass();
   }
 
   // The Gmpfr rounds' axis and segment witnesses (checked exactly) at one precision.

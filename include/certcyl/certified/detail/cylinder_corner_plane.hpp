@@ -54,34 +54,6 @@
 
 namespace certcyl::detail {
 
-// The exact ring's conversions: a Gmpfr of the scope's precision from R (rounded), R from a
-// Gmpfr (exactly), and 2^k in R.
-inline CGAL::Gmpfr corner_gmpfr(const Rational& q) { return nt::from_rational<CGAL::Gmpfr>(q); }
-inline CGAL::Gmpfr corner_gmpfr(const CGAL::Mpzf& x) {
-  if (CGAL::is_zero(x)) return nt::constant<CGAL::Gmpfr>(0);
-  const CGAL::Gmpq q = static_cast<CGAL::Gmpq>(x);  // dyadic: the denominator is a power of two
-  return gmpfr_of(CGAL::Gmpz(mpq_numref(q.mpq())), 1 - static_cast<long>(mpz_sizeinbase(mpq_denref(q.mpq()), 2)));
-}
-template <class R>
-R corner_exact(const CGAL::Gmpfr& x) {
-  if constexpr (std::is_same_v<R, CGAL::Mpzf>) {
-    if (!mpfr_regular_p(x.fr())) return CGAL::Mpzf(0);
-    CGAL::Gmpz m;
-    const long e = mpfr_get_z_2exp(m.mpz(), x.fr());  // x = m 2^e
-    return mpzf_times_two_power(mpzf_from_integer(m), e);
-  } else {
-    return to_rational(x);
-  }
-}
-template <class R>
-R corner_two_power(long k) {
-  if constexpr (std::is_same_v<R, CGAL::Mpzf>) {
-    return mpzf_times_two_power(CGAL::Mpzf(1), k);
-  } else {
-    return times_two_power(Rational(1), k);
-  }
-}
-
 template <class R>
 class CornerPlane {
  public:
@@ -126,7 +98,7 @@ class CornerPlane {
     c.E_ = {cj.p0, cj.p1};
     c.Aj_exact_ = Aj;
     c.AAj_ = dot(Aj, Aj);
-    c.inv_AAj_ = corner_exact<R>(k(1) / f(c.AAj_));
+    c.inv_AAj_ = ring_exact<R>(k(1) / f(c.AAj_));
     for (int e = 0; e < 2; ++e) c.local(c.E_[e], c.ca_[e], c.cr_[e]);
     c.jj_ = f(c.AAj_);
     c.rj_ = f(cj.radius);
@@ -137,9 +109,9 @@ class CornerPlane {
     c.ex_ = cross(w, Aj).map(f) * c.inv_radial_;
     // The interior points of j's axis beside each end: at min(r_j, |A_j| / 2) from it (rounded
     // to a rational fraction lambda of the axis, 0 < lambda <= 1/2).
-    R lambda = corner_two_power<R>(-1);
+    R lambda = ring_two_power<R>(-1);
     const F ratio = c.rj_ / CGAL::sqrt(c.jj_);
-    if (ratio < k(1) / k(2) && ratio > 0) lambda = corner_exact<R>(ratio);
+    if (ratio < k(1) / k(2) && ratio > 0) lambda = ring_exact<R>(ratio);
     c.inner_ = {cj.p0 + lambda * Aj, cj.p1 - lambda * Aj};
     return c;
   }
@@ -199,7 +171,7 @@ class CornerPlane {
 
   // The rational direction a' s A + b' w with a' ~ (1 - t) / |A| and b' ~ t / |w|.
   Vec3<R> direction(const F& t) const {
-    return corner_exact<R>((k(1) - t) * inv_axial_) * axial_ + corner_exact<R>(t * inv_radial_) * radial_;
+    return ring_exact<R>((k(1) - t) * inv_axial_) * axial_ + ring_exact<R>(t * inv_radial_) * radial_;
   }
 
   // j's support point in direction -D(t): the lower end plus r_j times the unit part of -D
@@ -216,7 +188,7 @@ class CornerPlane {
       // Exactly in the plane of the end disc (near a face, p is small and its rounding tilts it).
       // (A_j.A_j) o - (o.A_j) A_j is exactly orthogonal to A_j; times a dyadic 1 / A_j.A_j (its
       // length is rounded anyway) it stays so, without a division.
-      const Vec3<R> o = offset.map([](const F& x) { return corner_exact<R>(x); });
+      const Vec3<R> o = offset.map([](const F& x) { return ring_exact<R>(x); });
       s.x = E_[end] + inv_AAj_ * (AAj_ * o - dot(o, Aj_exact_) * Aj_exact_);
       local(s.x, s.xu, s.xe);
     }
@@ -243,7 +215,7 @@ class CornerPlane {
       F l = (p.xe - p.xu) / den;
       if (l < 0) l = k(0);
       if (l > 1) l = k(1);
-      const R lq = corner_exact<R>(l);
+      const R lq = ring_exact<R>(l);
       const F lf = f(lq);
       const F d = depth(lf * m.xu + (k(1) - lf) * p.xu, lf * m.xe + (k(1) - lf) * p.xe);
       if (d > best_depth) {
@@ -262,7 +234,7 @@ class CornerPlane {
     const long shift = std::max(1L, gmpfr_exponent(k(4) * size / best_depth) + 1);
     const long room = gmpfr_exponent(CGAL::sqrt(jj_) / rj_);
     if (shift + std::max(0L, -room) + 24 > precision) return std::nullopt;
-    const R eta = corner_two_power<R>(-shift);
+    const R eta = ring_two_power<R>(-shift);
     return x + eta * (c - x);
   }
 
@@ -273,7 +245,7 @@ class CornerPlane {
   }
 
  private:
-  static F f(const R& q) { return corner_gmpfr(q); }
+  static F f(const R& q) { return ring_gmpfr(q); }
   static F k(int n) { return nt::constant<F>(n); }
 
   // (x - q).u and (x - q).e for a rational x, reduced exactly (see the header).

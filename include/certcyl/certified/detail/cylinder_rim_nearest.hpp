@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "certcyl/certified/detail/cylinder_ellipsoid.hpp"
+#include "certcyl/certified/detail/cylinder_ring_frame.hpp"
 #include "certcyl/number_traits.hpp"
 #include "certcyl/primitives.hpp"
 #include "certcyl/vec3.hpp"
@@ -56,17 +57,19 @@ std::array<T, 5> rim_distance_derivatives(const Vec3<T>& a0, const Vec3<T>& a1, 
   return {dot(w, w), two * ww1, two * (w1w1 + ww2), two * (three * dot(w1, w2) - ww1), -two * ww2 - eight * w1w1 + six * w2w2};
 }
 
-inline std::vector<Point3<Rational>> rim_points_nearest_line(const Point3<Rational>& E, const Vec3<Rational>& Ai, const Rational& r,
-                                                             const Point3<Rational>& p, const Vec3<Rational>& Aj, const Rational& rj,
-                                                             long precision) {
+// In an exact ring (Rational, or CGAL::Mpzf in a pair's ring frame).
+template <class Ring>
+std::vector<Point3<Ring>> rim_points_nearest_line(const Point3<Ring>& E, const Vec3<Ring>& Ai, const Ring& r, const Point3<Ring>& p, const Vec3<Ring>& Aj,
+                                               const Ring& rj, long precision) {
   using F = CGAL::Gmpfr;
-  std::vector<Point3<Rational>> out;
-  const auto f = [](const Rational& q) { return nt::from_rational<F>(q); };
-  const auto fv = [&f](const Vec3<Rational>& q) { return Vec3<F>{f(q.x), f(q.y), f(q.z)}; };
+  std::vector<Point3<Ring>> out;
+  const auto f = [](const Ring& q) { return ring_gmpfr(q); };
+  const auto fv = [&f](const Vec3<Ring>& q) { return Vec3<F>{f(q.x), f(q.y), f(q.z)}; };
   // u: A_i x e_k for the axis e_k of A_i's smallest component; v = A_i x u; both normalised.
-  const Rational ax = abs(Ai.x), ay = abs(Ai.y), az = abs(Ai.z);
-  const Vec3<Rational> e = ax <= ay && ax <= az ? Vec3<Rational>{1, 0, 0} : ay <= az ? Vec3<Rational>{0, 1, 0} : Vec3<Rational>{0, 0, 1};
-  const Vec3<Rational> U = cross(Ai, e), V = cross(Ai, U), EP = E - p;
+  const auto magnitude = [](const Ring& x) { return x < 0 ? Ring(-x) : x; };
+  const Ring ax = magnitude(Ai.x), ay = magnitude(Ai.y), az = magnitude(Ai.z), zero(0), unit(1);
+  const Vec3<Ring> e = ax <= ay && ax <= az ? Vec3<Ring>{unit, zero, zero} : ay <= az ? Vec3<Ring>{zero, unit, zero} : Vec3<Ring>{zero, zero, unit};
+  const Vec3<Ring> U = cross(Ai, e), V = cross(Ai, U), EP = E - p;
   struct Frame {
     Vec3<F> u, v, a0, a1, a2;
     F r;
@@ -159,7 +162,7 @@ inline std::vector<Point3<Rational>> rim_points_nearest_line(const Point3<Ration
   const auto keep = [&](const Angle& a) {
     if (!(derivatives_at(a)[2] > 0)) return;
     const Vec3<F> x = (u * a.c + v * a.s) * rf;
-    out.push_back(E + Vec3<Rational>{to_rational(x.x), to_rational(x.y), to_rational(x.z)});
+    out.push_back(E + x.map([](const F& c) { return ring_exact<Ring>(c); }));
   };
   for (const double t0 : starts) {
     Angle start{F(std::cos(t0), precision), F(std::sin(t0), precision)};

@@ -21,15 +21,21 @@
 // no faster.
 #pragma once
 
+#include <CGAL/Gmpfr.h>
 #include <CGAL/Gmpq.h>
 #include <CGAL/Gmpz.h>
 #include <CGAL/Mpzf.h>
 #include <gmp.h>
+#include <mpfr.h>
 
 #include <cmath>
+#include <limits>
 #include <optional>
+#include <type_traits>
+#include <utility>
 
 #include "certcyl/certified/detail/cylinder_certificates.hpp"
+#include "certcyl/certified/detail/cylinder_ellipsoid.hpp"
 #include "certcyl/number_traits.hpp"
 
 namespace certcyl::detail {
@@ -123,6 +129,52 @@ inline Vec3<CGAL::Mpzf> ring_direction(const Vec3<Rational>& D, CGAL::Gmpz& l) {
 inline Vec3<CGAL::Mpzf> ring_direction(const Vec3<Rational>& D) {
   CGAL::Gmpz l;
   return ring_direction(D, l);
+}
+
+// floor(log2 |q|) within one, for q != 0 (exactly, for a dyadic q).
+inline long binade(const Rational& q) {
+  return static_cast<long>(mpz_sizeinbase(mpq_numref(q.mpq()), 2)) - static_cast<long>(mpz_sizeinbase(mpq_denref(q.mpq()), 2));
+}
+
+// floor(log2 |x|) of a dyadic x != 0, exactly: from CGAL's enclosure of x between two doubles
+// when both ends lie in one binade (then x does too), else (x just below a power of two, or
+// below the normal range, where the enclosure widens to 0) from x in Gmpq.
+inline long binade(const CGAL::Mpzf& x) {
+  const std::pair<double, double> b = CGAL::to_interval(x);
+  const double lo = std::min(std::abs(b.first), std::abs(b.second)), hi = std::max(std::abs(b.first), std::abs(b.second));
+  if (lo >= std::numeric_limits<double>::min() && std::isfinite(hi) && (b.first < 0) == (b.second < 0)) {
+    const int e = std::ilogb(lo);
+    if (e == std::ilogb(hi)) return e;
+  }
+  return binade(Rational(static_cast<CGAL::Gmpq>(x)));
+}
+
+// The exact rings' (R = Rational or CGAL::Mpzf) conversions: a Gmpfr of the scope's precision
+// from R (rounded), R from a Gmpfr (exactly), and 2^k in R (their binades are above).
+inline CGAL::Gmpfr ring_gmpfr(const Rational& q) { return nt::from_rational<CGAL::Gmpfr>(q); }
+inline CGAL::Gmpfr ring_gmpfr(const CGAL::Mpzf& x) {
+  if (CGAL::is_zero(x)) return nt::constant<CGAL::Gmpfr>(0);
+  const CGAL::Gmpq q = static_cast<CGAL::Gmpq>(x);  // dyadic: the denominator is a power of two
+  return gmpfr_of(CGAL::Gmpz(mpq_numref(q.mpq())), 1 - static_cast<long>(mpz_sizeinbase(mpq_denref(q.mpq()), 2)));
+}
+template <class R>
+R ring_exact(const CGAL::Gmpfr& x) {
+  if constexpr (std::is_same_v<R, CGAL::Mpzf>) {
+    if (!mpfr_regular_p(x.fr())) return CGAL::Mpzf(0);
+    CGAL::Gmpz m;
+    const long e = mpfr_get_z_2exp(m.mpz(), x.fr());  // x = m 2^e
+    return mpzf_times_two_power(mpzf_from_integer(m), e);
+  } else {
+    return to_rational(x);
+  }
+}
+template <class R>
+R ring_two_power(long k) {
+  if constexpr (std::is_same_v<R, CGAL::Mpzf>) {
+    return mpzf_times_two_power(CGAL::Mpzf(1), k);
+  } else {
+    return times_two_power(Rational(1), k);
+  }
 }
 
 inline Vec3<Rational> mpzf_to_rational(const Vec3<CGAL::Mpzf>& v) {
