@@ -15,6 +15,7 @@
 #define BOOST_TEST_MODULE cylinder_touching_rim
 #include <boost/test/unit_test.hpp>
 
+#include <climits>
 #include <cmath>
 #include <random>
 
@@ -191,6 +192,39 @@ BOOST_AUTO_TEST_CASE(irrational_tangency_overlaps) {
   std::vector<Vec3<Q>> rim_wall;
   certcyl::detail::rim_wall_normals(pair, rim_wall);
   for (const Vec3<Q>& D : rim_wall) BOOST_TEST(!certcyl::detail::prove_touching(pair, D).has_value());
+}
+
+// The rim-wall candidates reduce their quartic modulo p from the residues of its inputs before
+// (and mostly instead of) forming it: those residues must be the reductions of the exact
+// coefficients, which GMP computes here from the exact polynomial, for signed inputs of 700 bits.
+BOOST_AUTO_TEST_CASE(rim_wall_quartic_reduced_from_residues) {
+  using Z = CGAL::Gmpz;
+  using P = certcyl::detail::ResidueModP;
+  constexpr unsigned long p = 4294967291u;
+  for (const long x : {0L, 1L, -1L, 4294967290L, 4294967291L, -4294967291L, -4294967292L, LONG_MIN, LONG_MAX})
+    BOOST_TEST(P(x).v == mpz_fdiv_ui(Z(x).mpz(), p));
+  std::mt19937_64 rng(7);
+  const auto big = [&rng] {
+    Z z(0);
+    for (int k = 0; k < 11; ++k) z = z * Z(std::int64_t{1} << 62) + Z(static_cast<long>(rng() >> 2));
+    return (rng() & 1) ? Z(-z) : z;
+  };
+  const auto vec = [&big] { return Vec3<Z>{big(), big(), big()}; };
+  const auto residue = [](const Z& x) { return P(x); };
+  for (int trial = 0; trial < 20; ++trial) {
+    const Vec3<Z> Tj = vec(), W = vec(), Ai = vec(), Aj = vec();
+    const Z k = big(), ri = big(), rj = big(), AAi = dot(Ai, Ai), AAj = dot(Aj, Aj);
+    const certcyl::detail::RimWallLine<Z> exact(Tj, W, Ai, Aj, k, ri, rj, AAi, AAj);
+    const certcyl::detail::RimWallLine<P> reduced(Tj.map(residue), W.map(residue), Ai.map(residue), Aj.map(residue), P(k), P(ri), P(rj),
+                                                  P(AAi), P(AAj));
+    for (const int sigma : {1, -1}) {
+      const std::vector<Z> G = exact.G(sigma);
+      const std::vector<P> Gp = reduced.G(sigma);
+      BOOST_TEST(G.size() == 5u);
+      BOOST_TEST(Gp.size() <= G.size());
+      for (std::size_t i = 0; i < G.size(); ++i) BOOST_TEST((i < Gp.size() ? Gp[i].v : 0) == mpz_fdiv_ui(G[i].mpz(), p));
+    }
+  }
 }
 
 BOOST_AUTO_TEST_CASE(squarefree_filter_modulo_a_prime) {

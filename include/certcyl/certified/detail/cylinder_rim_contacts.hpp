@@ -53,7 +53,9 @@
 // the coefficients of F are of degree 8 in P, W and 4 in the squared radii over A.A; all in Gmpq.
 // Euclid's algorithm on such coefficients grows them quickly (seconds for operands of thousands
 // of digits), so F is first reduced modulo a prime p: when F mod p and its derivative are coprime,
-// F has no multiple root (squarefree_mod_p) and the exact gcd is skipped.
+// F has no multiple root (squarefree_mod_p) and the exact gcd is skipped. F mod p is computed
+// from the residues of the integer inputs, so F itself (coefficients of degree 8 in numbers of
+// thousands of bits, on wide-range input) is formed only when that test fails.
 #pragma once
 
 #include <CGAL/Gmpq.h>
@@ -84,9 +86,37 @@ inline std::optional<Rational> rational_sqrt(const Rational& q) {
   return Rational(rn, rd);
 }
 
-// ---- univariate polynomials over Q or Z: coefficients from degree 0 up, no trailing zero -------
+inline constexpr std::uint64_t kSquarefreePrime = 4294967291u;  // 2^32 - 5
+
+// An integer's residue modulo kSquarefreePrime: the ring homomorphism Z -> Z/p, so that a
+// polynomial's reduction can be computed without the polynomial (the same operations on the
+// residues of its integer inputs).
+struct ResidueModP {
+  static constexpr std::uint64_t p = kSquarefreePrime;
+  std::uint64_t v = 0;  // in [0, p)
+  ResidueModP() = default;
+  explicit ResidueModP(long x) : v(x >= 0 ? static_cast<std::uint64_t>(x) % p : (p - static_cast<std::uint64_t>(-(x + 1)) % p - 1) % p) {}
+  explicit ResidueModP(const CGAL::Gmpz& z) : v(mpz_fdiv_ui(z.mpz(), p)) {}
+  friend ResidueModP operator+(ResidueModP a, ResidueModP b) { return from((a.v + b.v) % p); }
+  friend ResidueModP operator-(ResidueModP a, ResidueModP b) { return from((a.v + p - b.v) % p); }
+  friend ResidueModP operator-(ResidueModP a) { return from((p - a.v) % p); }
+  friend ResidueModP operator*(ResidueModP a, ResidueModP b) { return from(a.v * b.v % p); }
+  ResidueModP& operator+=(ResidueModP b) { return *this = *this + b; }
+  ResidueModP& operator-=(ResidueModP b) { return *this = *this - b; }
+  ResidueModP& operator*=(ResidueModP b) { return *this = *this * b; }
+  friend bool operator==(ResidueModP a, int b) { return a.v == ResidueModP(static_cast<long>(b)).v; }
+
+ private:
+  static ResidueModP from(std::uint64_t v) {
+    ResidueModP r;
+    r.v = v;
+    return r;
+  }
+};
+
+// ---- univariate polynomials over Q, Z or Z/p: coefficients from degree 0 up, no trailing zero --
 template <class C>
-concept PolynomialCoefficient = std::same_as<C, Rational> || std::same_as<C, CGAL::Gmpz>;
+concept PolynomialCoefficient = std::same_as<C, Rational> || std::same_as<C, CGAL::Gmpz> || std::same_as<C, ResidueModP>;
 using RationalPolynomial = std::vector<Rational>;
 using IntegerPolynomial = std::vector<CGAL::Gmpz>;
 
@@ -186,6 +216,14 @@ inline IntegerPolynomial primitive_gcd(IntegerPolynomial f, IntegerPolynomial g)
   return f;
 }
 
+inline std::uint64_t power_mod_p(std::uint64_t b, std::uint64_t e) {
+  constexpr std::uint64_t p = kSquarefreePrime;
+  std::uint64_t r = 1;
+  for (b %= p; e; e >>= 1, b = b * b % p)
+    if (e & 1) r = r * b % p;
+  return r;
+}
+
 // True when f is proved squarefree (no multiple root, over the complex numbers) by reduction
 // modulo the prime p = 2^32 - 5: each coefficient n/d with p not dividing d maps to n d^-1 mod p
 // (a ring homomorphism from the rationals with such denominators onto Z/p). If p divides no
@@ -193,26 +231,11 @@ inline IntegerPolynomial primitive_gcd(IntegerPolynomial f, IntegerPolynomial g)
 // squarefree: a factor h of f and f' of degree >= 1, taken primitive over the p-adic integers
 // (Gauss's lemma), has a leading coefficient dividing lc(f), so h mod p keeps its degree and
 // divides both reductions. False proves nothing (the exact gcd decides).
-template <PolynomialCoefficient C>
-bool squarefree_mod_p(const std::vector<C>& f) {
-  constexpr std::uint64_t p = 4294967291u;
-  if (f.size() < 2) return f.size() == 1;
-  const auto power = [&](std::uint64_t b, std::uint64_t e) {
-    std::uint64_t r = 1;
-    for (b %= p; e; e >>= 1, b = b * b % p)
-      if (e & 1) r = r * b % p;
-    return r;
-  };
-  std::vector<std::uint64_t> g;  // f mod p, lowest degree first
-  for (const C& c : f) {
-    if constexpr (std::same_as<C, CGAL::Gmpz>) {
-      g.push_back(mpz_fdiv_ui(c.mpz(), p));
-    } else {
-      const std::uint64_t d = mpz_fdiv_ui(mpq_denref(c.mpq()), p);
-      if (d == 0) return false;
-      g.push_back(mpz_fdiv_ui(mpq_numref(c.mpq()), p) * power(d, p - 2) % p);
-    }
-  }
+// Here on g = f mod p, lowest degree first, when f's reduction is computed without f (so g.back()
+// must be the reduction of f's leading coefficient: nonzero, g has f's degree).
+inline bool squarefree_reduced_mod_p(std::vector<std::uint64_t> g) {
+  constexpr std::uint64_t p = kSquarefreePrime;
+  if (g.size() < 2) return g.size() == 1;
   if (g.back() == 0) return false;
   std::vector<std::uint64_t> h;  // the derivative
   for (std::size_t i = 1; i < g.size(); ++i) h.push_back(g[i] * i % p);
@@ -222,7 +245,7 @@ bool squarefree_mod_p(const std::vector<C>& f) {
   trim(h);
   // Euclid over Z/p: a remainder sequence ending in a nonzero constant means coprime.
   while (!h.empty()) {
-    const std::uint64_t inv = power(h.back(), p - 2);
+    const std::uint64_t inv = power_mod_p(h.back(), p - 2);
     while (g.size() >= h.size()) {
       const std::uint64_t c = g.back() * inv % p;
       const std::size_t shift = g.size() - h.size();
@@ -234,6 +257,24 @@ bool squarefree_mod_p(const std::vector<C>& f) {
     std::swap(g, h);
   }
   return g.size() == 1;
+}
+
+// The same test on f itself.
+template <PolynomialCoefficient C>
+bool squarefree_mod_p(const std::vector<C>& f) {
+  constexpr std::uint64_t p = kSquarefreePrime;
+  if (f.size() < 2) return f.size() == 1;
+  std::vector<std::uint64_t> g;  // f mod p, lowest degree first
+  for (const C& c : f) {
+    if constexpr (std::same_as<C, CGAL::Gmpz>) {
+      g.push_back(mpz_fdiv_ui(c.mpz(), p));
+    } else {
+      const std::uint64_t d = mpz_fdiv_ui(mpq_denref(c.mpq()), p);
+      if (d == 0) return false;
+      g.push_back(mpz_fdiv_ui(mpq_numref(c.mpq()), p) * power_mod_p(d, p - 2) % p);
+    }
+  }
+  return squarefree_reduced_mod_p(std::move(g));
 }
 
 // The monic greatest common divisor (Euclid's algorithm, exact); empty when f = g = 0.
@@ -303,26 +344,58 @@ inline Vec3<Rational> to_rational_vector(const Vec3<CGAL::Gmpz>& v) {
 // whose roots are those of F_sigma. No gcd of rationals is formed on the way (they were most of
 // the cost for input of thousands of bits), and the double roots come from a primitive
 // remainder sequence over Z.
+// The polynomials above for wall j and rim i on the line D = T_j + t W, over Z (exactly) or Z/p
+// (the same operations on the residues of the integer inputs: G's reduction without G).
+template <PolynomialCoefficient C>
+struct RimWallLine {
+  std::vector<C> l, Pi, Pj, four_pi_pj;
+  C k, aa;  // k and a_i a_j
+
+  RimWallLine(const Vec3<C>& Tj, const Vec3<C>& W, const Vec3<C>& Ai, const Vec3<C>& Aj, const C& k_, const C& ri, const C& rj,
+              const C& AAi, const C& AAj)
+      : k(k_), aa(AAi * AAj) {
+    const C four(4L);
+    l = trimmed(std::vector<C>{dot(Tj, Ai), dot(W, Ai)});
+    Pi = (four * ri * ri * AAj) * squared_norm_along(cross(Tj, Ai), cross(W, Ai));
+    Pj = (four * rj * rj * AAi) * squared_norm_along(cross(Tj, Aj), cross(W, Aj));
+    four_pi_pj = four * (Pi * Pj);
+  }
+  std::vector<C> G(int sigma) const {
+    const std::vector<C> m = std::vector<C>{k} - C(static_cast<long>(sigma)) * l;  // k - sigma l
+    const std::vector<C> E = aa * (m * m) - Pi - Pj;
+    return E * E - four_pi_pj;
+  }
+};
+
 inline void rim_wall_normals(const CylinderPair<Rational>& d, std::vector<Vec3<Rational>>& out) {
   using Z = CGAL::Gmpz;
+  using P = ResidueModP;
   const IntegerScaledPair z = IntegerScaledPair::make(d);
   const Vec3<Z>& T = z.T;
   const std::array<Vec3<Z>, 2>& A = z.A;
   const std::array<Z, 2>&r = z.r, &AA = z.AA;
+  const auto residue = [](const Z& x) { return P(x); };
   for (int j = 0; j < 2; ++j) {
     const int i = 1 - j;  // the rim's cylinder; j is the wall's
     const Vec3<Z> W = cross(A[j], T);
     if (W.x == 0 && W.y == 0 && W.z == 0) continue;  // A_j parallel to T: no normal with D.A_j = 0 < D.T
     const Vec3<Z> Tj = AA[j] * T - dot(T, A[j]) * A[j];
     const Z k = dot(Tj, T);  // = |W|^2 > 0
-    const IntegerPolynomial l = trimmed(IntegerPolynomial{dot(Tj, A[i]), dot(W, A[i])});
-    const IntegerPolynomial Pi = (Z(4) * r[i] * r[i] * AA[j]) * squared_norm_along(cross(Tj, A[i]), cross(W, A[i]));
-    const IntegerPolynomial Pj = (Z(4) * r[j] * r[j] * AA[i]) * squared_norm_along(cross(Tj, A[j]), cross(W, A[j]));
-    const IntegerPolynomial four_pi_pj = Z(4) * (Pi * Pj);
+    // G modulo p first: when its degree-4 coefficient survives the reduction (so G has degree 4)
+    // and the reduction is squarefree, G has no double root and is never formed (its
+    // coefficients are of degree 8 in numbers of thousands of bits on wide-range input).
+    const RimWallLine<P> reduced(Tj.map(residue), W.map(residue), A[i].map(residue), A[j].map(residue), P(k), P(r[i]), P(r[j]),
+                                 P(AA[i]), P(AA[j]));
+    std::optional<RimWallLine<Z>> line;
     for (const int sigma : {1, -1}) {
-      const IntegerPolynomial m = IntegerPolynomial{k} - Z(sigma) * l;  // k - sigma l
-      const IntegerPolynomial E = (AA[i] * AA[j]) * (m * m) - Pi - Pj;
-      const IntegerPolynomial G = E * E - four_pi_pj;
+      if (const std::vector<P> Gp = reduced.G(sigma); Gp.size() == 5) {
+        std::vector<std::uint64_t> g;
+        for (const P& c : Gp) g.push_back(c.v);
+        if (squarefree_reduced_mod_p(std::move(g))) continue;  // no double root
+      }
+      if (!line) line.emplace(Tj, W, A[i], A[j], k, r[i], r[j], AA[i], AA[j]);
+      const IntegerPolynomial& l = line->l;
+      const IntegerPolynomial G = line->G(sigma);
       if (G.empty()) continue;  // sigma l = k and p_i = p_j: no contact for this sigma (header comment)
       if (squarefree_mod_p(G)) continue;  // no double root
       const IntegerPolynomial H = primitive_gcd(G, derivative(G));
