@@ -129,6 +129,10 @@ std::vector<Family> fuzz_found_families() {
   add("rim_line_quarter", cyl(0, 0, 0x1.8cp+6, 2, -0x1.01414fb0000fap+401, 0x1.72727275a27d5p-397, r),
       cyl(r, 0, 0x1.00002p+417, -0.25, r, r, r));
   add("wall_on_tilted_cap", cyl(0x0.000fffb0008p-1022, 0, 0, 0, 0, 2, 1), cyl(-1, 0x1.8p+6, 0x1.8p+1, 1, 0, 0x1.8p+1, 1));
+  // A pancake whose rim meets a wall and a cap edge of the other at one point (the witness:
+  // tests/test_cylinder_wide_range.cpp, pancake_on_a_rim_wall_and_cap_edge_is_overlapping).
+  const double s = 0x1.1cp-1;
+  add("pancake_rim_wall_cap_edge", cyl(0, 0, 0, 0, 0, 0x1.8000001ffff2bp-425, s), cyl(0, s, s, s, 0x1.f8p-1, s, s));
   std::vector<Family> out;
   for (const WideCase& c : cases) out.push_back({c.name, {&c}});
   return out;

@@ -197,6 +197,34 @@ BOOST_AUTO_TEST_CASE(needle_ending_on_a_cap_is_overlapping) {
   }
 }
 
+// Found by the pair fuzz harness: a pancake a (the disc of radius r = 0x1.1cp-1 about the z axis,
+// thickness h about 1.5 2^-425) and a cylinder b of the same radius lying on a's lower cap plane
+// z = 0, its axis at height r, with b's lower end p0 = (0, r, r) straight above the point
+// Q = (0, r, 0) of a's rim. Q is on a's rim, on b's lowest line and on b's cap plane: the common
+// interior is a wedge about Q some 2^-216 by 2^-212 by 2^-425. With u = b.p1 - b.p0 (horizontal)
+// and v = (u_y, -u_x, 0), X = Q + 2^-216 u + 2^-214 v + 2^-426 e_z is interior to both: 0 < z < h;
+// x^2 + y^2 - r^2 = 2 r (2^-216 u_y - 2^-214 u_x) + O(2^-428) < 0; X is in b's slab (axial
+// 2^-216 |u|^2 > 0); and its squared distance from b's axis, (r - 2^-426)^2 + 2^-428 |v|^2, is
+// below r^2 since |v|^2 < 4 r. None of the candidates finds it: the Gmpfr rounds run to 1,024
+// bits and the ellipsoid rounds decide it, some 200 ms a query (bench/RESULTS.md).
+BOOST_AUTO_TEST_CASE(pancake_on_a_rim_wall_and_cap_edge_is_overlapping) {
+  const double radius = 0x1.1cp-1;
+  const certcyl::Cylinder<double> a{{0, 0, 0}, {0, 0, 0x1.8000001ffff2bp-425}, radius};
+  const certcyl::Cylinder<double> b{{0, radius, radius}, {radius, 0x1.f8p-1, radius}, radius};
+  const auto to_q = [](double x) { return Q(x); };
+  const Cylinder<Q> qa = a.map(to_q), qb = b.map(to_q);
+  const certcyl::Vec3<Q> u = qb.p1 - qb.p0, v{u.y, -u.x, Q(0)};
+  const auto two_power = [](int k) { return certcyl::detail::times_two_power(Q(1), k); };
+  const certcyl::Point3<Q> X = certcyl::Point3<Q>{Q(0), Q(radius), Q(0)} + two_power(-216) * u + two_power(-214) * v +
+                               certcyl::Vec3<Q>{Q(0), Q(0), two_power(-426)};
+  BOOST_REQUIRE(certcyl::detail::strictly_inside_both(certcyl::detail::CylinderPair<Q>::make(qa, qb), X));
+  for (const bool swap : {false, true}) {
+    const auto r = swap ? certcyl::certified_cylinder_cylinder(b, a) : certcyl::certified_cylinder_cylinder(a, b);
+    BOOST_TEST(r.answer == Answer::overlapping);
+    BOOST_TEST(certcyl::recheck::check_cylinder_pair(swap ? qb : qa, swap ? qa : qb, r) == "");
+  }
+}
+
 // Found by the pair fuzz harness (15 s and 6.5 s per query before): two overlapping pairs whose
 // common interior is a sliver around a point of the larger cylinder's rim or cap, far too thin
 // for the Gmpfr rounds below 8,192 bits.
