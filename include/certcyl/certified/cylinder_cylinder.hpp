@@ -1381,7 +1381,7 @@ class CylinderCylinderSolver {
     const R two(2), four(4);
     for (const Vec3<R>& d : {Ai, Vec3<R>(-Ai), towards}) {
       const Vec3<R> w = AAj * d - dot(d, Aj) * Aj;
-      const R w_max = largest(w);
+      const R w_max = largest_coordinate(w);
       if (CGAL::is_zero(w_max)) continue;
       // c_j + r_j w / (k w_max) = (k w_max n + W r_j w) / (k w_max W), k = 2 and 4.
       const Vec3<R> shift = (cj_point.w * cj.radius) * w;
@@ -1559,16 +1559,9 @@ class CylinderCylinderSolver {
   // D = 4 max|w_k| max|A_k|, X = (D E + r_j max|A_k| w - r_j max|w_k| 2^-4k A) / D. Each is
   // checked exactly.
   template <class R>
-  static R largest(const Vec3<R>& v) {
-    R m(0);
-    for (const R* q : {&v.x, &v.y, &v.z})
-      if (const R a = *q < 0 ? R(-*q) : *q; a > m) m = a;
-    return m;
-  }
-  template <class R>
   bool end_disc_witness(const CylinderPair<R>& e, int j) {
     const auto [cj, ci, Aj, Ai, AAj, AAi] = roles(e, j);
-    const R a_max = largest(Aj), two(2), four(4);
+    const R a_max = largest_coordinate(Aj), two(2), four(4);
     for (const bool far_end : {false, true}) {
       const Point3<R>& E = far_end ? cj.p1 : cj.p0;
       if (classify_point(E, ci) == Side::outside) continue;
@@ -1578,7 +1571,7 @@ class CylinderCylinderSolver {
       const Vec3<R> towards_axis = AAi * M - dot(M, Ai) * Ai;
       for (const Vec3<R>& d : {Ai, Vec3<R>(-Ai), towards_axis}) {
         const Vec3<R> w = AAj * d - dot(d, Aj) * Aj;
-        const R w_max = largest(w);
+        const R w_max = largest_coordinate(w);
         if (CGAL::is_zero(w_max)) continue;
         const R D = four * w_max * a_max;
         const Vec3<R> base = D * E + (cj.radius * a_max) * w, step = (cj.radius * w_max) * out;
@@ -1654,7 +1647,13 @@ class CylinderCylinderSolver {
       };
       for (const HomogeneousPoint<R>& y : cap_disk_points(e, i, far_end, rim, input_span_bits())) {
         const std::optional<long> depth = depth_binade(y, cj, Aj, AAj);
-        if (!depth) continue;
+        if (!depth) {
+          // Y in the open disk on j's boundary (j's wall tangent to the cap plane, or a rim of j
+          // meeting it): Y moved toward j's axis within the cap plane (cap_disk_toward_axis).
+          const std::optional<HomogeneousPoint<R>> z = cap_disk_toward_axis(y, E, ci.radius, Ai, AAi, cj, Aj, AAj);
+          if (z && try_point(*z, depth_binade(*z, cj, Aj, AAj))) return true;
+          continue;
+        }
         if (try_point(y, depth)) return true;
         // Y on the rim or just outside it (a line of j tangent to i's rim, tilted far below an
         // ulp): Y pulled toward E by about 2^(depth - 2), which keeps it inside j, and by about

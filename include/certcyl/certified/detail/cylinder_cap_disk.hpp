@@ -74,6 +74,39 @@ std::optional<long> depth_binade(const HomogeneousPoint<R>& Y, const Cylinder<R>
   return std::min(binade(std::min(u, rest)) - bw - binade(AA) / 2, binade(tube) - 2 * bw - binade(AA) - binade(c.radius) - 1);
 }
 
+// max_k |v_k|.
+template <class R>
+R largest_coordinate(const Vec3<R>& v) {
+  R m(0);
+  for (const R* q : {&v.x, &v.y, &v.z})
+    if (const R a = *q < 0 ? R(-*q) : *q; a > m) m = a;
+  return m;
+}
+
+// A candidate Y = n / w in the open disk of i's cap (centre E, radius r_i, normal A_i) that is
+// not strictly inside j (it lies on j's wall where the wall is tangent to the cap plane, or where
+// a rim of j meets it): Y + s P with P the part in the cap plane of the direction from Y toward
+// j's axis, |s P| about 2^-2 sqrt(r_i^2 - |Y - E|^2) (Y's room in the disk: moved across a
+// tangent wall by d, a point leaves the disk by about d^2 / r_i); nullopt when Y is not in the
+// open disk or P = 0. With V = n - w p_j: the part of Y - p_j orthogonal to A_j is
+// Q / (w A_j.A_j), Q = A_j.A_j V - (V.A_j) A_j, and P = (Q.A_i) A_i - A_i.A_i Q.
+template <class R>
+std::optional<HomogeneousPoint<R>> cap_disk_toward_axis(const HomogeneousPoint<R>& Y, const Point3<R>& E, const R& ri, const Vec3<R>& Ai,
+                                                        const R& AAi, const Cylinder<R>& cj, const Vec3<R>& Aj, const R& AAj) {
+  const Vec3<R> radial = Y.n - Y.w * E;
+  const R room = ri * ri * Y.w * Y.w - dot(radial, radial);  // w^2 (r_i^2 - |Y - E|^2)
+  if (!(room > 0)) return std::nullopt;
+  const Vec3<R> V = Y.n - Y.w * cj.p0;
+  const Vec3<R> Q = AAj * V - dot(V, Aj) * Aj;
+  const Vec3<R> P = dot(Q, Ai) * Ai - AAi * Q;
+  const R largest = largest_coordinate(P);
+  if (CGAL::is_zero(largest)) return std::nullopt;
+  const long bw = binade(Y.w), room_binade = binade(room) - 2 * bw;
+  const long target = (room_binade - (room_binade < 0 ? 1 : 0)) / 2 - 2;  // about log2 of the room's square root, less 2
+  const long k = binade(largest) - bw - target;                        // |2^-k P / w| about 2^target
+  return HomogeneousPoint<R>{Y.n + ring_two_power<R>(-k) * P, Y.w};
+}
+
 // The candidates on the cap plane through i's end p1 (far_end) or p0; span_bits the input's
 // span (CylinderCylinderSolver::input_span_bits).
 template <class R>
