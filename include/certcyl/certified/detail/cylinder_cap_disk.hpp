@@ -12,7 +12,10 @@
 //   with `rim`: the points of i's rim deepest into the half-space of each cap of j,
 //     E + r_i u / s (u the part in the cap plane of that cap's inward normal, s >= |u| at
 //     span + 128 bits raised by 2^(2 - q)), and the rim points nearest j's axis line
-//     (detail/cylinder_rim_nearest.hpp) at twice the span plus 128 bits.
+//     (detail/cylinder_rim_nearest.hpp) at twice the span plus 128 bits;
+//   and, for a candidate in the open disk that lies on j's boundary (j's wall tangent to the cap
+//   plane, or a rim of j meeting it), the candidate moved toward j's axis within the cap plane
+//   (cap_disk_toward_axis).
 // interior_slacks(Y, c) are the signs of classify_point(Y, c) without a division, so the exact
 // check of a candidate; depth_binade(Y, c) is floor(log2) (within a few) of a lower bound on Y's distance from the
 // boundary of c when Y is strictly inside c, nullopt otherwise: the least of the distances to
