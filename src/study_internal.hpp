@@ -2,7 +2,8 @@
 // form, the planned instances, the methods run quietly or timed, a thread pool and a progress
 // bar, and each stage's entry point. Internal to the command; the stages, in order:
 //   study_plan.cpp       the configuration (size presets, --config, --shard) and the instances
-//   study_instances.cpp  every method on every instance: timing, outcomes, instances.csv, inputs.csv
+//   study_instances.cpp  every method on every instance: answers, then timing on one pinned thread;
+//                        instances.csv, inputs.csv, timing_thread.csv
 //   study_child.cpp      the serial methods' calls in a child process (CORE::Expr may end it)
 //   study_maps.cpp       the failure maps (failure_maps/)
 //   study_hunt.cpp       the worst-input hunt (hunt.csv)
@@ -105,8 +106,26 @@ std::string outcome_of(const study::MethodOutput& m, const study::Instance& inst
 
 // The method's output (error set when it throws); serial methods one at a time.
 study::MethodOutput run_quiet(const study::Method& m, const std::vector<double>& x);
-// The same with its time in nanoseconds: one timed call, repeated 16 times under 2 us.
+// The timing protocol: a measurement calls a method until this many nanoseconds have elapsed,
+// and the time is the median of kTimingMeasurements measurements.
+constexpr double kTimingBudgetNs = 20000;
+constexpr int kTimingMeasurements = 3;
+// The first call's output and the time per call in nanoseconds under the study's one repetition
+// protocol: kTimingMeasurements measurements, each of calls in batches of 1, 2, 4, ..., the clock
+// read after each batch, until kTimingBudgetNs have elapsed since its first call began (at least
+// one call), giving the elapsed time over its calls; the time is their median. A call that
+// throws is made once (its time that call's).
 std::pair<study::MethodOutput, double> run_timed(const study::Method& m, const std::vector<double>& x);
+
+// The thread of the timing pass (timing_thread.csv, one row per run or shard): pinned to `cpu`
+// or not, and the note that says what was pinned or why pinning failed.
+struct TimingThread {
+  int shard = 0;
+  bool pinned = false;
+  int cpu = -1;
+  std::string note;
+};
+extern const char* const kTimingThreadHeader;  // timing_thread.csv
 
 // A line method's entry parameter t against the certified t* (instances.csv's t_error_ulps, and
 // the judge's): |t - t*| in units of the ulp of max(|t*|, 1), the parameter's own ulp away from
@@ -144,11 +163,12 @@ class ChildRunner {
   int pid_ = -1, to_child_ = -1, from_child_ = -1;
 };
 
-// Certifies every planned instance and runs every applicable method on it; the rows of each
-// instance in registry order.
+// Certifies every planned instance and runs every applicable method on it: the answers on
+// o.threads threads, then every method's time on the main thread alone, pinned to one CPU
+// (run_timed; the serial methods answered there too); the rows of each instance in registry order.
 std::vector<std::vector<Row>> run_instances(const StudyOptions& o, const study::Registry& registry, std::vector<Planned>& plan);
 
-// instances.csv and inputs.csv in dir.
+// instances.csv, inputs.csv and timing_thread.csv (the last run_instances's timing thread) in dir.
 void write_instances(const fs::path& dir, const std::vector<Planned>& plan, const std::vector<std::vector<Row>>& rows);
 
 // ---- The other stages ------------------------------------------------------------------------

@@ -1,13 +1,17 @@
 // The report of a results folder, read from its CSV files only (so a merge reports the same as
 // an unsharded run): the disagreement tables per method, per query and per family
-// (summary.txt, summary.csv, summary_families.csv), the stages that decided the certified cylinder
-// pairs (stages.csv, study_stages.cpp), the count of CORE::Expr's warnings (Core_Diagnostics), and
-// the figures with index.html, the page that presents the summary and the figures
-// (experiments/plot_study.py).
+// (summary.txt, summary.csv, summary_families.csv), the times' distributions per query, per
+// family and per deciding stage of the certified cylinder pairs, generic and near-degenerate
+// inputs apart (timing.csv, timing_families.csv, timing_stages.csv), the stages that decided the
+// certified cylinder pairs (stages.csv, study_stages.cpp), the count of CORE::Expr's warnings
+// (Core_Diagnostics), and the figures with index.html, the page that presents the summary and the
+// figures (experiments/plot_study.py).
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <set>
 #include <sstream>
@@ -127,6 +131,136 @@ std::string core_diagnostics(const fs::path& dir) {
   return os.str();
 }
 
+// ---- Times ----------------------------------------------------------------------------------
+
+// The inputs a time belongs to: "generic" for the uniform random family, "near_degenerate" for
+// every hard-case family (built on a degeneracy and moved at most 2^41 ulps off it).
+const char* input_class(const std::string& family) { return family == "uniform" ? "generic" : "near_degenerate"; }
+
+// The times of a set of rows: nearest-rank percentiles (the value of rank ceil(p n / 100)), the
+// mean summed in row order, the maximum.
+struct Times {
+  std::vector<double> ns;
+  std::string kind;
+  double percentile(double p) const {
+    std::vector<double> v = ns;
+    std::sort(v.begin(), v.end());
+    const double rank = std::ceil(p / 100.0 * static_cast<double>(v.size()));
+    const long k = std::max(0L, std::min(static_cast<long>(v.size()) - 1, static_cast<long>(rank) - 1));
+    return v[static_cast<std::size_t>(k)];
+  }
+  double mean() const {
+    double sum = 0;
+    for (double d : ns) sum += d;
+    return sum / static_cast<double>(ns.size());
+  }
+  // n,p10_ns,p50_ns,p90_ns,mean_ns,max_ns
+  std::string fields() const {
+    return std::to_string(ns.size()) + ',' + num(percentile(10)) + ',' + num(percentile(50)) + ',' + num(percentile(90)) + ',' + num(mean()) +
+           ',' + num(percentile(100));
+  }
+};
+
+constexpr const char* kTimesColumns = "n,p10_ns,p50_ns,p90_ns,mean_ns,max_ns";
+
+// dir/timing_thread.csv, or, in a merged folder without one, its shards' rows gathered into it.
+std::vector<std::string> timing_threads(const fs::path& dir) {
+  std::vector<fs::path> files;
+  if (fs::exists(dir / "timing_thread.csv")) {
+    files.push_back(dir / "timing_thread.csv");
+  } else if (fs::is_directory(dir)) {
+    for (const auto& e : fs::directory_iterator(dir))
+      if (e.is_directory() && e.path().filename().string().rfind("shard-", 0) == 0 && fs::exists(e.path() / "timing_thread.csv"))
+        files.push_back(e.path() / "timing_thread.csv");
+    std::sort(files.begin(), files.end());
+  }
+  std::vector<std::string> lines;
+  for (const fs::path& f : files) {
+    std::ifstream in(f);
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line))
+      if (!line.empty()) lines.push_back(line);
+  }
+  if (!fs::exists(dir / "timing_thread.csv") && !files.empty()) {
+    std::ofstream out(dir / "timing_thread.csv");
+    out << kTimingThreadHeader << '\n';
+    for (const std::string& l : lines) out << l << '\n';
+    close_written(out, dir / "timing_thread.csv");
+  }
+  return lines;
+}
+
+// timing.csv, timing_families.csv and timing_stages.csv from the rows (a call that ended its
+// process has no time); returns the table of summary.txt: the certified methods per query.
+std::string write_timing(const fs::path& dir, const std::vector<Row>& rows) {
+  std::map<std::string, std::string> stage_of;  // instance -> deciding stage (cylinder pairs)
+  {
+    std::ifstream in(dir / "inputs.csv");
+    std::string line;
+    std::getline(in, line);
+    const std::vector<std::string> header = split_csv(line);
+    const auto c_stage = std::find(header.begin(), header.end(), "stage") - header.begin();
+    while (std::getline(in, line)) {
+      const auto f = split_csv(line);
+      if (static_cast<std::size_t>(c_stage) < f.size() && !f[static_cast<std::size_t>(c_stage)].empty())
+        stage_of[f[0]] = f[static_cast<std::size_t>(c_stage)];
+    }
+  }
+  using Key = std::tuple<std::string, std::string, std::string>;
+  std::map<Key, Times> by_query;                                                 // (query, method, inputs)
+  std::map<std::tuple<std::string, std::string, std::string>, Times> by_family;  // (query, family, method)
+  std::map<std::tuple<std::string, std::string, std::string, std::string>, Times> by_stage;  // (query, method, stage, inputs)
+  for (const Row& r : rows) {
+    if (r.answer == "process_ended" || !std::isfinite(r.ns)) continue;
+    const std::string inputs = input_class(r.family);
+    for (const std::string& g : {std::string("all"), inputs}) {
+      Times& t = by_query[{r.query, r.method, g}];
+      t.kind = r.kind, t.ns.push_back(r.ns);
+    }
+    Times& f = by_family[{r.query, r.family, r.method}];
+    f.kind = r.kind, f.ns.push_back(r.ns);
+    const auto st = stage_of.find(std::to_string(r.instance));
+    if (r.kind == "certified" && st != stage_of.end())
+      for (const std::string& g : {std::string("all"), inputs}) by_stage[{r.query, r.method, st->second, g}].ns.push_back(r.ns);
+  }
+  std::ofstream q(dir / "timing.csv");
+  q << "query,method,kind,inputs," << kTimesColumns << '\n';
+  for (const auto& [key, t] : by_query)
+    q << std::get<0>(key) << ',' << csv_field(std::get<1>(key)) << ',' << t.kind << ',' << std::get<2>(key) << ',' << t.fields() << '\n';
+  close_written(q, dir / "timing.csv");
+  std::ofstream fam(dir / "timing_families.csv");
+  fam << "query,family,method,kind,inputs," << kTimesColumns << '\n';
+  for (const auto& [key, t] : by_family)
+    fam << std::get<0>(key) << ',' << std::get<1>(key) << ',' << csv_field(std::get<2>(key)) << ',' << t.kind << ',' << input_class(std::get<1>(key))
+        << ',' << t.fields() << '\n';
+  close_written(fam, dir / "timing_families.csv");
+  std::ofstream stages(dir / "timing_stages.csv");
+  stages << "query,method,stage,inputs," << kTimesColumns << '\n';
+  for (const auto& [key, t] : by_stage)
+    stages << std::get<0>(key) << ',' << csv_field(std::get<1>(key)) << ',' << std::get<2>(key) << ',' << std::get<3>(key) << ',' << t.fields() << '\n';
+  close_written(stages, dir / "timing_stages.csv");
+
+  std::ostringstream os;
+  os << "\ntimes of the certified methods in ns per call (timing.csv; generic: the uniform family, near-degenerate: the hard-case families)\n";
+  os << std::left << std::setw(24) << "query" << std::setw(17) << "inputs" << std::right << std::setw(7) << "n" << std::setw(11) << "p10"
+     << std::setw(11) << "p50" << std::setw(11) << "p90" << std::setw(11) << "mean" << std::setw(11) << "max" << '\n';
+  for (const auto& [key, t] : by_query) {
+    if (t.kind != "certified" || std::get<2>(key) == "all") continue;
+    os << std::left << std::setw(24) << std::get<0>(key) << std::setw(17) << std::get<2>(key) << std::right << std::setw(7) << t.ns.size()
+       << std::fixed << std::setprecision(0);
+    for (double v : {t.percentile(10), t.percentile(50), t.percentile(90), t.mean(), t.percentile(100)}) os << std::setw(11) << v;
+    os << '\n';
+    os.unsetf(std::ios::fixed);
+  }
+  for (const std::string& line : timing_threads(dir)) {
+    const auto f = split_csv(line);
+    if (f.size() >= 6) os << "timing (shard " << f[0] << "): one thread, " << f[5] << "; the time per call the median of " << f[4]
+                          << " measurements, each of calls in doubling batches until " << f[3] << " ns had elapsed\n";
+  }
+  return os.str();
+}
+
 }  // namespace
 
 // Summary from instances.csv and inputs.csv (so a merge gives the same tables).
@@ -135,12 +269,14 @@ std::string write_summary(const fs::path& dir) {
   std::map<std::tuple<std::string, std::string>, Tally> by_method_query;
   std::map<std::tuple<std::string, std::string, std::string>, Tally> by_family;
   std::set<std::string> boolean;  // the methods that answer "intersecting" (no three-valued error)
+  std::vector<Row> rows;
   {
     std::ifstream in(dir / "instances.csv");
     std::string line;
     std::getline(in, line);
     while (std::getline(in, line)) {
-      const Row r = parse_row(line);
+      rows.push_back(parse_row(line));
+      const Row& r = rows.back();
       if (r.answer == "intersecting") boolean.insert(r.method);
       by_method[r.method].add(r);
       by_method_query[{r.query, r.method}].add(r);
@@ -148,7 +284,7 @@ std::string write_summary(const fs::path& dir) {
     }
   }
   const Checks c = checks_from_inputs(dir / "inputs.csv");
-  const std::string table = summary_table(by_method, boolean, c) + core_diagnostics(dir) + '\n' + write_stages(dir);
+  const std::string table = summary_table(by_method, boolean, c) + core_diagnostics(dir) + '\n' + write_stages(dir) + write_timing(dir, rows);
   // The three-valued rate's field: empty for a Boolean method.
   const auto rate3 = [&boolean](const Tally& t, const std::string& method) { return boolean.count(method) ? std::string() : num(t.rate3()); };
   write_whole(dir / "summary.txt", table);
