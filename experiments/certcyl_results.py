@@ -25,6 +25,18 @@ and paper/ share.
   boolean_methods(rows)   the methods that answered `intersecting` (no three-valued answer)
   K_BINS, k_bin(k)        the bins of k_ulps (k = 0, then four binades a bin) and a value's bin
   errors_by_k(rows)       (query, method) -> one Errors per bin of K_BINS, hard-case families only
+  ran_on(rows)            (query, method) -> the instances (ids) the method ran on
+  paired(rows, query, methods)  the instances of `query` on which every method of `methods` ran:
+                          the common ground of a comparison (the slow number types run on a
+                          pseudo-random subset of each family only)
+  paired_speed_error(rows, query, methods)
+                          (the paired instances, method -> (median ns, Boolean rate, decided)) on
+                          the instances of `query` where every method ran: a speed-against-error
+                          point per method that compares like with like
+  input_class(family)     "generic" (the uniform family) or "near_degenerate" (a hard-case family)
+  time_stats(values)      (n, p10, p50, p90, mean, max) of times: nearest-rank percentiles and the
+                          mean summed in the given order, as the study's timing*.csv files
+  ns_tex(ns)              a time for LaTeX: "81\\,ns", "2.44\\,\\ensuremath{\\mu}s", "24.1\\,ms", "--"
   split_method(m)         "shene_as_written/double" -> ("shene_as_written", "double")
   method_label(m)         the same for a reader: "shene (as written), double"
   QUERY_TITLES            query name -> short title
@@ -293,6 +305,71 @@ def percentile(values, p):
         return math.nan
     k = max(0, min(len(v) - 1, math.ceil(p / 100.0 * len(v)) - 1))
     return v[k]
+
+
+def ran_on(rows):
+    """(query, method) -> the set of instance ids (strings) of the rows of instances.csv."""
+    out = {}
+    for r in rows:
+        out.setdefault((r["query"], r["method"]), set()).add(r["instance"])
+    return out
+
+
+def paired(rows, query, methods, ran=None):
+    """The instance ids of `query` on which every method of `methods` ran (an empty set when one
+    of them never ran); `ran` is ran_on(rows), computed when not given."""
+    ran = ran_on(rows) if ran is None else ran
+    sets = [ran.get((query, m), set()) for m in methods]
+    return set.intersection(*sets) if sets else set()
+
+
+def paired_speed_error(rows, query, methods, ran=None):
+    """On the instances of `query` where every method of `methods` ran: the set of those
+    instances and, per method, (median ns by nearest rank, Boolean error rate (NaN when nothing
+    was decided), decided answers), from the rows of instances.csv (a call that ended its process
+    has no time)."""
+    common = paired(rows, query, methods, ran)
+    wanted = set(methods)
+    ns, errs = {m: [] for m in methods}, {m: Errors() for m in methods}
+    for r in rows:
+        if r["query"] == query and r["method"] in wanted and r["instance"] in common:
+            if r["answer"] != "process_ended":
+                ns[r["method"]].append(fnum(r["ns"]))
+            errs[r["method"]].add(r["outcome"])
+    return common, {m: (percentile(ns[m], 50), errs[m].rate, errs[m].decided) for m in methods}
+
+
+# The inputs a time belongs to (the study's timing.csv): the uniform random family is generic
+# input; every hard-case family is built on a degeneracy and moved at most 2^41 ulps off it.
+INPUT_CLASSES = ("generic", "near_degenerate")
+
+
+def input_class(family):
+    return "generic" if family == "uniform" else "near_degenerate"
+
+
+def time_stats(values):
+    """(n, p10, p50, p90, mean, max) of a list of times, the percentiles by nearest rank and the
+    mean summed in the order given: the columns of the study's timing*.csv files, which sum in the
+    order of instances.csv. None when empty."""
+    if not values:
+        return None
+    total = 0.0
+    for v in values:  # left to right, as the study sums (sum() compensates from Python 3.12 on)
+        total += v
+    return (len(values), percentile(values, 10), percentile(values, 50), percentile(values, 90),
+            total / len(values), max(values))
+
+
+def ns_tex(ns):
+    """A time in nanoseconds for a LaTeX table or text, three significant digits above 1 us."""
+    if ns is None or math.isnan(ns) or ns <= 0:
+        return "--"
+    if ns < 1000:
+        return f"{ns:.0f}\\,ns"
+    if ns < 1e6:
+        return f"{ns / 1000:.3g}" + "\\,\\ensuremath{\\mu}s"
+    return f"{ns / 1e6:.3g}\\,ms"
 
 
 def split_method(m):

@@ -8,10 +8,13 @@ Writes PNG and PDF into results/<name>/figures/ (or DIR), each sized to fit a pa
   disagreement_<query>   false positives + false negatives per method and family (heat map)
   gap_rate_<query>       disagreement rate against the certified gap, one small panel per method
                          that gave a wrong answer (at most 16), separated and overlapping sides
-  pareto                 median ns per query against disagreement rate, per query, every method;
-                         only the methods on the Pareto front are labelled
+  pareto                 median ns per query against disagreement rate, per query, every method,
+                         on the instances of the query where every method ran (the slow types
+                         run on a subset: paired, their count in the panel's title); only the
+                         methods on the Pareto front are labelled
   pareto_compact         the same without sweeps and the extra MPFR precisions, colour by
-                         algorithm, marker by number type (legible at a page's width)
+                         algorithm, marker by number type (legible at a page's width), paired on
+                         the instances where every method it shows ran
                          --judged JUDGE_DIR (repeatable): on both, the method of each results
                          folder of `certcyl judge` (its speed.csv) as a star with a black edge,
                          named, in the legend, for the queries it was judged on; its time is the
@@ -25,9 +28,10 @@ Writes PNG and PDF into results/<name>/figures/ (or DIR), each sized to fit a pa
                          error (FP + FN) and, where it differs, the three-valued one (+ class)
   error_by_k.html        the same as a table for every method with a wrong answer (linked from
                          index.html)
-  t_error                line queries: error of the entry parameter t in ulps, one panel per query
+  t_error                line queries: error of the entry parameter t in ulps, one panel per query,
+                         on the instances where every method shown ran (paired)
                          (median, 90th and 99th percentiles, maximum)
-  pareto_t_error         line queries: median ns against the 99th percentile of the t error
+  pareto_t_error         line queries: median ns against the 99th percentile of the t error (paired)
   map_<name>             failure maps: each method's answer on the ulp grid, wrong cells marked
                          (class mismatches, touching for overlapping or the reverse, apart)
   map_compact_<name>     the same with at most 8 panels (methods with identical answers on every
@@ -332,21 +336,17 @@ def gap_rate(rows, out):
              tight=False)
 
 
-def pareto(summary, out, judged=()):
+def pareto(rows, summary, out, judged=()):
     queries = sorted({r["query"] for r in summary})
+    ran = cr.ran_on(rows)
     cols = 3
     rows_n = math.ceil(len(queries) / cols)
     fig, axes = plt.subplots(rows_n, cols, figsize=(PAGE_WIDTH, 2.7 * rows_n + 0.8), squeeze=False)
     floor = 1e-4
     for ax, q in zip(axes.flat, queries):
-        pts = []
-        for r in summary:
-            if r["query"] != q:
-                continue
-            ns, rate = fnum(r["median_ns"]), fnum(r["disagreement_rate"])
-            if not (ns > 0):
-                continue
-            pts.append((ns, rate, r["method"], r["kind"]))
+        kinds = {r["method"]: r["kind"] for r in summary if r["query"] == q}
+        common, points = cr.paired_speed_error(rows, q, sorted(kinds), ran)
+        pts = [(ns, rate, m, kinds[m]) for m, (ns, rate, decided) in points.items() if ns > 0 and decided]
         for ns, rate, m, kind in pts:
             ax.scatter(ns, max(rate, floor), color=KIND_COLOURS.get(kind, "grey"), s=9, linewidths=0)
         names = draw_judged(ax, judged, q, floor, 90)
@@ -363,10 +363,13 @@ def pareto(summary, out, judged=()):
             label_front(ax, names, floor)
         ax.axhline(floor, color="grey", lw=0.5, ls=":")
         pareto_axes(ax, q, f"disagreement rate (0 drawn at {floor:g})")
+        ax.set_title(f"{ax.get_title()} ({len(common)} paired)", fontsize=ax.title.get_fontsize())
     lift = judged_legend(fig, judged, 6)
     pareto_legend(fig, axes, len(queries), "speed against error (per query, every method)", lift)
     save(fig, out, "pareto",
-         "One panel per query, one dot per method, coloured by kind: further left is faster, lower is right more often (a rate "
+         "One panel per query, one dot per method, coloured by kind, every method on the same instances: those of the query "
+         "on which every method ran (the slow number types run on a pseudo-random subset; their count in the panel's title). "
+         "Further left is faster, lower is right more often (a rate "
          "of 0 is drawn on the dotted line); the grey staircase joins the methods no other method beats on both speed and error, "
          "and only those are named. A rate pools every instance of the query, so it depends on the study's sampling "
          "design (k = 0 for one instance in eight, otherwise |k| log-uniform up to 2^41 ulps off a degeneracy): a point's "
@@ -385,8 +388,9 @@ NT_MARKERS = {"exact": "X", "double": "o", "long_double": "s", "interval": "^", 
               "core_expr": "*", "float": "P"}
 
 
-def pareto_compact(summary, out, judged=()):
+def pareto_compact(rows, summary, out, judged=()):
     queries = [q for q in QUERY_TITLES if any(r["query"] == q for r in summary)]
+    ran = cr.ran_on(rows)
     if not queries:
         return
     cols = 3
@@ -395,14 +399,10 @@ def pareto_compact(summary, out, judged=()):
     floor = 1e-4
     used_algos, used_nts = set(), set()
     for ax, q in zip(axes.flat, queries):
-        pts = []
-        for r in summary:
-            base, _, nt = r["method"].partition("/")
-            if r["query"] != q or r["kind"] == "sweep" or nt not in NT_MARKERS or base not in ALGO_COLOURS:
-                continue
-            ns, rate = fnum(r["median_ns"]), fnum(r["disagreement_rate"])
-            if ns > 0:
-                pts.append((ns, rate, base, nt))
+        shown = sorted(r["method"] for r in summary if r["query"] == q and r["kind"] != "sweep"
+                       and r["method"].partition("/")[2] in NT_MARKERS and r["method"].partition("/")[0] in ALGO_COLOURS)
+        common, points = cr.paired_speed_error(rows, q, shown, ran)
+        pts = [(ns, rate) + tuple(m.split("/", 1)) for m, (ns, rate, decided) in points.items() if ns > 0 and decided]
         for ns, rate, base, nt in pts:
             hollow = base in ("bullet_margin0", "fcl_mesh", "ode_mesh")
             c = ALGO_COLOURS[base]
@@ -420,7 +420,7 @@ def pareto_compact(summary, out, judged=()):
         ax.set_ylim(floor / 2, 1)
         if names:
             label_front(ax, names, floor)
-        ax.set_title(QUERY_TITLES[q], fontsize=8)
+        ax.set_title(f"{QUERY_TITLES[q]} ({len(common)} paired)", fontsize=8)
         ax.tick_params(labelsize=7)
         ax.grid(alpha=0.3)
     for ax in axes[-1]:
@@ -437,7 +437,8 @@ def pareto_compact(summary, out, judged=()):
     bottom_legend(fig, algo_handles + nt_handles, 6.2, lift)
     save(fig, out, "pareto_compact",
          "The same speed against error without the sweeps and the extra MPFR precisions: colour is the algorithm, marker the "
-         "number type (hollow: a peer library's variant), so the cost of each number type reads along a colour. As on "
+         "number type (hollow: a peer library's variant), so the cost of each number type reads along a colour; each panel on "
+         "the instances where every method it shows ran (their count in its title). As on "
          "pareto, the rate (Boolean, FP + FN) depends on the study's sampling design of k (error_by_k)."
          + judged_caption(judged),
          rect=(0, 0.1 + lift, 1, 1), dpi=150)
@@ -588,10 +589,18 @@ T_ERROR_MARKS = (("median", 50, "tab:blue", "o"), ("90th percentile", 90, "tab:g
 
 
 def t_error(rows, out):
+    # The methods with an error of t per query, compared on the instances where all of them ran
+    # (the slow number types run on a subset): the errors of the rows of those instances only.
+    shown = defaultdict(set)
+    for r in rows:
+        if math.isfinite(fnum(r["t_error_ulps"])):
+            shown[r["query"]].add(r["method"])
+    ran = cr.ran_on(rows)
+    common = {q: cr.paired(rows, q, sorted(ms), ran) for q, ms in shown.items()}
     errs = defaultdict(list)
     for r in rows:
         t = fnum(r["t_error_ulps"])
-        if math.isfinite(t):
+        if math.isfinite(t) and r["instance"] in common[r["query"]]:
             errs[(r["query"], r["method"])].append(t)
     if not errs:
         return
@@ -612,7 +621,7 @@ def t_error(rows, out):
         ax.set_yticks(range(len(methods)), methods, fontsize=5)
         ax.set_ylim(len(methods) - 0.5, -0.5)
         ax.set_xscale("log")
-        ax.set_title(QUERY_TITLES.get(q, q), fontsize=7)
+        ax.set_title(f"{QUERY_TITLES.get(q, q)} ({len(common[q])} paired instances)", fontsize=7)
         ax.tick_params(axis="x", labelsize=6)
         ax.grid(alpha=0.3)
     for ax in list(axes.flat)[len(queries):]:
@@ -622,16 +631,17 @@ def t_error(rows, out):
     fig.legend(handles=handles, loc="upper center", ncol=4, fontsize=6.5, frameon=False, bbox_to_anchor=(0.5, 1.0))
     save(fig, out, "t_error",
          "One panel per line query, one row per method: the error of the entry parameter t it reports, in ulps of the exact "
-         "value, over the instances on which it reported one; the markers are its median, 90th and 99th percentiles and maximum "
+         "value, over the instances on which it reported one among those every method shown ran on (the slow number types run "
+         "on a subset: paired, their count in the title); the markers are its median, 90th and 99th percentiles and maximum "
          "(1 means exact), so a long grey bar is a method that is usually accurate but sometimes far off.",
          rect=(0, 0, 1, 0.96))
 
     # Speed against the error of t: median ns per query against the 99th percentile of the
-    # t error, per line query and method.
+    # t error, per line query and method, on the same paired instances.
     ns = defaultdict(list)
     kinds = {}
     for r in rows:
-        if (r["query"], r["method"]) in errs:
+        if (r["query"], r["method"]) in errs and r["instance"] in common[r["query"]] and r["answer"] != "process_ended":
             ns[(r["query"], r["method"])].append(fnum(r["ns"]))
             kinds[r["method"]] = r["kind"]
     cols = 2 if len(queries) > 1 else 1
@@ -653,9 +663,11 @@ def t_error(rows, out):
             ax.step([p[0] for p in best], [p[1] for p in best], where="post", color="grey", lw=0.7, zorder=0)
             label_front(ax, best)
         pareto_axes(ax, q, "99th percentile of 1 + t error (ulps)")
+        ax.set_title(f"{ax.get_title()} ({len(common[q])} paired)", fontsize=ax.title.get_fontsize())
     pareto_legend(fig, axes, len(queries), "speed against the error of the entry parameter t (line queries)")
     save(fig, out, "pareto_t_error",
-         "One panel per line query, one dot per method, coloured by kind: further left is faster, lower has a smaller 99th "
+         "One panel per line query, one dot per method, coloured by kind, every method on the instances of the query on which "
+         "all of them ran (their count in the title): further left is faster, lower has a smaller 99th "
          "percentile of the t error; the grey staircase joins the methods no other beats on both, and only those are named.",
          rect=(0, 0.05, 1, 1))
 
@@ -1040,8 +1052,8 @@ def main():
                   f"{j['method']} not drawn for it", file=sys.stderr)
     disagreement_tables(families, out)
     gap_rate(rows, out)
-    pareto(summary, out, judged)
-    pareto_compact(summary, out, judged)
+    pareto(rows, summary, out, judged)
+    pareto_compact(rows, summary, out, judged)
     gap_rate_overview(rows, out)
     by_k, boolean = error_by_k(rows, out)
     t_error(rows, out)

@@ -14,6 +14,11 @@ Fails (exit status 1, one line per problem) when
   - paper.tex does not include the errors against k (REQUIRED_INCLUDES), or a line of
     generated/tables/error_by_k.tex shows wrong/decided counts other than those recounted here from
     RESULTS_DIR/instances.csv (per bin of k, hard-case families, Boolean or three-valued);
+  - a line of generated/tables/timing_certified.tex shows times (n, p10, p50, p90, mean, max)
+    other than those recounted from instances.csv (per query, method and input class, or per
+    deciding stage of the certified cylinder pairs, inputs.csv's stage column);
+  - a line of generated/tables/seeds_by_type.tex shows a paired count or FP/FN/class counts other
+    than those recounted on the instances where every number type of the algorithm ran;
   - paper.pdf is missing, older than a file it includes, or has an implausible page count
     (pdfinfo), or the LaTeX log reports undefined references or citations.
 """
@@ -26,15 +31,20 @@ import sys
 
 # SHA-256 as make_tables.py and plot_study.py record it, from the module the scripts share.
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "experiments"))
+import certcyl_results as cr  # noqa: E402
 from certcyl_results import K_BINS, k_bin, sha256  # noqa: E402
 
-# The appendix carries the full proofs (completeness, touching, the filters' error bounds): 23 pages
-# at the time of writing; the limit catches a runaway table or figure, not the proofs.
-MIN_PAGES, MAX_PAGES = 6, 30
+# The appendix carries the full proofs (completeness, touching, the filters' error bounds, the
+# signed gap) and the results the timing tables: 31 pages at the time of writing; the limit
+# catches a runaway table or figure, not the proofs.
+MIN_PAGES, MAX_PAGES = 6, 36
 REQUIRED_INPUTS = ["instances.csv", "inputs.csv", "summary.csv", "summary_families.csv", "hunt.csv"]
 # What the results section must show: the errors per bin of k (findings on single rates).
-REQUIRED_INCLUDES = ["generated/tables/error_by_k.tex", "figures/error_by_k.pdf"]
+REQUIRED_INCLUDES = ["generated/tables/error_by_k.tex", "figures/error_by_k.pdf", "generated/tables/timing_certified.tex",
+                     "generated/tables/seeds_by_type.tex"]
 K_TABLE = "generated/tables/error_by_k.tex"
+TIMING_TABLE = "generated/tables/timing_certified.tex"
+SEEDS_TABLE = "generated/tables/seeds_by_type.tex"
 WRONG = {"boolean": ("false_positive", "false_negative"), "three_valued": ("false_positive", "false_negative", "class_mismatch")}
 
 
@@ -78,6 +88,81 @@ def check_k_table(path, instances, problems):
         problems.append(f"{K_TABLE}: no line of counts")
 
 
+def table_cells(line):
+    """The cells of a table line, its row end and spacing removed."""
+    return [c.strip() for c in re.sub(r"\\\\(\[[^\]]*\])?\s*$", "", line).split("&")]
+
+
+def check_timing_table(path, instances, inputs, problems):
+    """Every line after "% timing: QUERY METHOD CLASS" or "% timing_stage: METHOD STAGE all" shows
+    n, p10, p50, p90, mean and max of the times that instances.csv gives for it (a call that ended
+    its process has none), formatted as the table formats them."""
+    rows = cr.read_csv(instances)
+    stage = {r["instance"]: r["stage"] for r in cr.read_csv(inputs)}
+    with open(path) as f:
+        lines = f.read().splitlines()
+    checked = 0
+    for i, line in enumerate(lines):
+        m = re.match(r"^% timing: (\S+) (\S+) (generic|near_degenerate|all)$", line)
+        s = re.match(r"^% timing_stage: (\S+) (\S+) all$", line)
+        if not (m or s):
+            continue
+        if m:
+            q, method, cls = m.groups()
+            times = [float(r["ns"]) for r in rows if r["query"] == q and r["method"] == method and r["answer"] != "process_ended"
+                     and cls in ("all", cr.input_class(r["family"]))]
+            what = f"{q} {method} {cls}"
+        else:
+            method, st = s.groups()
+            times = [float(r["ns"]) for r in rows if r["query"] == "cylinder_cylinder" and r["method"] == method
+                     and r["answer"] != "process_ended" and stage.get(r["instance"]) == st]
+            what = f"{method} stage {st}"
+        stats = cr.time_stats(times)
+        want = [] if stats is None else [str(stats[0])] + [cr.ns_tex(v) for v in stats[1:]]
+        cells = table_cells(lines[i + 1])[2:] if i + 1 < len(lines) else []
+        if cells != want:
+            problems.append(f"{TIMING_TABLE}: {what}: shows {' '.join(cells)}, instances.csv gives {' '.join(want)}")
+        checked += 1
+    if not checked:
+        problems.append(f"{TIMING_TABLE}: no line of times")
+
+
+def check_seeds_table(path, instances, problems):
+    """Every line after "% paired: BASE NT..." shows the instances where every number type of BASE
+    ran (per query, pooled) and, per number type, FP/FN/class on those instances only."""
+    rows = cr.read_csv(instances)
+    ran = cr.ran_on(rows)
+    with open(path) as f:
+        lines = f.read().splitlines()
+    checked = 0
+    for i, line in enumerate(lines):
+        m = re.match(r"^% paired: (\S+) (.*)$", line)
+        if not m:
+            continue
+        base, nts = m.group(1), m.group(2).split()
+        common = {}
+        for q in {q for q, _ in ran}:
+            ms = [f"{base}/{nt}" for nt in nts if (q, f"{base}/{nt}") in ran]
+            if ms:
+                common[q] = cr.paired(rows, q, ms, ran)
+        counts = {nt: [0, 0, 0, 0] for nt in nts}
+        for r in rows:
+            b, nt = cr.split_method(r["method"])
+            if b == base and nt in counts and r["instance"] in common.get(r["query"], ()) and r["outcome"] != "uncertified":
+                c = counts[nt]
+                c[0] += 1
+                c[1] += r["outcome"] == "false_positive"
+                c[2] += r["outcome"] == "false_negative"
+                c[3] += r["outcome"] == "class_mismatch"
+        want = [str(sum(len(v) for v in common.values()))] + [f"{c[1]}/{c[2]}/{c[3]}" if c[0] else "" for c in counts.values()]
+        cells = table_cells(lines[i + 1])[1:] if i + 1 < len(lines) else []
+        if cells != want:
+            problems.append(f"{SEEDS_TABLE}: {base}: shows {' '.join(cells)}, instances.csv gives {' '.join(want)} on the paired instances")
+        checked += 1
+    if not checked:
+        problems.append(f"{SEEDS_TABLE}: no line of counts")
+
+
 def included_files(tex):
     """Paths that the .tex includes: \\input{...} and \\includegraphics[...]{...}, comments removed."""
     text = "\n".join(re.sub(r"(?<!\\)%.*", "", line) for line in tex.splitlines())
@@ -106,6 +191,10 @@ def main():
             problems.append(f"paper.tex does not include {rel}")
     if os.path.exists(os.path.join(out, K_TABLE)) and os.path.exists(os.path.join(res, "instances.csv")):
         check_k_table(os.path.join(out, K_TABLE), os.path.join(res, "instances.csv"), problems)
+    if os.path.exists(os.path.join(out, TIMING_TABLE)) and os.path.exists(os.path.join(res, "instances.csv")):
+        check_timing_table(os.path.join(out, TIMING_TABLE), os.path.join(res, "instances.csv"), os.path.join(res, "inputs.csv"), problems)
+    if os.path.exists(os.path.join(out, SEEDS_TABLE)) and os.path.exists(os.path.join(res, "instances.csv")):
+        check_seeds_table(os.path.join(out, SEEDS_TABLE), os.path.join(res, "instances.csv"), problems)
 
     # The manifests of the two generators, keyed by the subdirectory they describe.
     manifests = {}

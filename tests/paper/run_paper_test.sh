@@ -4,7 +4,8 @@
 # study's files, the PDF exists with a plausible page count), then shows that the checker
 # rejects a paper whose figure is missing, one without the table of errors against k, one whose
 # table of errors against k shows a count other than instances.csv's, and one whose figures are
-# stale.
+# stale, and one whose timing table or paired table of the seeds shows a count other than
+# instances.csv's.
 #   run_paper_test.sh CERTCYL_BINARY SOURCE_DIR WORK_DIR
 set -euo pipefail
 certcyl=$1
@@ -56,6 +57,35 @@ fi
 grep -q "^check_paper: generated/tables/error_by_k.tex: .* instances.csv gives" "$work/recount.log" \
   || { cat "$work/recount.log"; echo "FAILED: no report of the wrong count"; exit 1; }
 
+# The timing table and the paired table of the seeds: a time or a paired count other than what
+# instances.csv gives (the manifest updated to match) must fail, naming the table.
+tamper() {  # tamper DIR TABLE MARKER: the line after the first MARKER line gets its last number changed
+  /usr/bin/python3 - "$1/generated" "$2" "$3" <<'PY2'
+import hashlib, json, re, sys
+gen, table, marker = sys.argv[1:]
+path = f"{gen}/tables/{table}"
+lines = open(path).read().split("\n")
+i = next(k for k, l in enumerate(lines) if l.startswith(marker)) + 1
+lines[i] = re.sub(r"& (\d+) &", lambda m: f"& {int(m.group(1)) + 1} &", lines[i], count=1)
+open(path, "w").write("\n".join(lines))
+man = json.load(open(gen + "/manifest.json"))
+man["outputs"]["tables/" + table] = hashlib.sha256(open(path, "rb").read()).hexdigest()
+json.dump(man, open(gen + "/manifest.json", "w"), indent=1, sort_keys=True)
+PY2
+  touch "$1/paper.pdf"
+}
+for t in "timing_certified.tex:% timing: " "seeds_by_type.tex:% paired: "; do
+  table=${t%%:*}
+  cp -a "$work/paper" "$work/tamper"
+  tamper "$work/tamper" "$table" "${t#*:}"
+  if check "$work/tamper" "$work/tiny" > "$work/tamper.log"; then
+    echo "FAILED: a wrong count in $table was accepted"; exit 1
+  fi
+  grep -q "^check_paper: generated/tables/$table: .* instances.csv gives" "$work/tamper.log" \
+    || { cat "$work/tamper.log"; echo "FAILED: no report of the wrong count in $table"; exit 1; }
+  rm -rf "$work/tamper"
+done
+
 # Stale figures: another study (a different seed) replaces the results, the tables are
 # regenerated from it but the figures are not: the check must fail on the figures.
 "$certcyl" study --size tiny --seed 2 --out "$work" --name tiny2 --no-plots --threads 2 > "$work/study2.log"
@@ -68,4 +98,4 @@ grep -q "^check_paper: figures: stale" "$work/stale.log" || { cat "$work/stale.l
 if grep -q "^check_paper: generated: stale" "$work/stale.log"; then
   cat "$work/stale.log"; echo "FAILED: the regenerated tables were reported stale"; exit 1
 fi
-echo "paper test: built, checked, and the checker rejects a missing and a stale figure, a paper without the errors against k and a wrong count in their table"
+echo "paper test: built, checked, and the checker rejects a missing and a stale figure, a paper without the errors against k, and a wrong count in their table, the timing table or the paired table"

@@ -7,7 +7,8 @@ made by hand whose answers are known.
 
 Checks the bins of k at their edges, the Boolean and three-valued error of a set of outcomes, the
 Wilson interval's exact ends, that errors_by_k leaves out the uniform family and undecided answers,
-that boolean_methods finds the methods answering intersecting, and that a failure map's class
+that boolean_methods finds the methods answering intersecting, that paired comparisons count only the
+instances every compared method ran on, the timing statistics, and that a failure map's class
 mismatches are neither false positives nor false negatives and never a Boolean method's.
 Exit status 1 with one line per failed check; the map checks are skipped (said on standard output)
 where numpy or matplotlib is missing.
@@ -80,6 +81,28 @@ check("a at k = 70000 (bin [2^16, 2^20))", a[5].decided, 1)
 check("a decided over all bins (uniform left out)", sum(b.decided for b in a), 4)
 check("an undecided method has no bins", ("line_cylinder", "a/interval") in by_k, False)
 check("Boolean methods", cr.boolean_methods(rows), {"b/double"})
+
+# Paired comparisons: the instances every compared method ran on, and speed and error there only.
+def row(query, method, instance, outcome="agree", ns="10", answer="separated", family="tangent"):
+    return {"query": query, "method": method, "instance": str(instance), "outcome": outcome, "ns": ns, "answer": answer,
+            "family": family}
+
+
+prs = [row("q", "a/double", i, ns=str(i)) for i in range(1, 9)] + \
+      [row("q", "a/core_expr", i, outcome="false_positive" if i == 4 else "agree", ns="1000") for i in (2, 4, 6)] + \
+      [row("q", "a/double", 9, answer="process_ended", outcome="error"), row("r", "a/double", 1)]
+check("paired", cr.paired(prs, "q", ["a/double", "a/core_expr"]), {"2", "4", "6"})
+check("paired, a method that never ran", cr.paired(prs, "q", ["a/double", "b/double"]), set())
+common, pts = cr.paired_speed_error(prs, "q", ["a/double", "a/core_expr"])
+check("paired_speed_error instances", common, {"2", "4", "6"})
+check("paired_speed_error double", pts["a/double"], (4.0, 0.0, 3))  # times 2, 4, 6: median 4, not that of 1..8
+check("paired_speed_error core", pts["a/core_expr"], (1000.0, 1 / 3, 3))
+# Times: nearest-rank percentiles and the mean summed left to right.
+check("time_stats", cr.time_stats([5.0, 1.0, 3.0, 2.0, 4.0]), (5, 1.0, 3.0, 5.0, 3.0, 5.0))
+check("time_stats of nothing", cr.time_stats([]), None)
+check("input classes", (cr.input_class("uniform"), cr.input_class("c_rim_rim")), ("generic", "near_degenerate"))
+check("ns_tex", (cr.ns_tex(81.4), cr.ns_tex(2440.0), cr.ns_tex(2.41e7), cr.ns_tex(math.nan)),
+      ("81\\,ns", "2.44\\,\\ensuremath{\\mu}s", "24.1\\,ms", "--"))
 
 # The failure maps' masks (plot_study.py): needs numpy and matplotlib.
 try:
