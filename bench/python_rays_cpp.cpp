@@ -74,7 +74,7 @@ void run(const std::vector<double>& rows, Run& r, LineRange range) {
     if (r.gap) {
       const Line<Rational> l{line.origin.map(exact), line.direction.map(exact)};
       std::tie(r.gaps[2 * i], r.gaps[2 * i + 1]) =
-          study::detail::enclose_rational(study::detail::circular_line_gap(l, cylinder.map(exact), range));
+          study::detail::enclose_margin_doubles(study::detail::circular_line_gap(l, cylinder.map(exact), range));
     }
   }
   const std::chrono::duration<double, std::nano> elapsed = std::chrono::steady_clock::now() - start;

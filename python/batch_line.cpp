@@ -28,23 +28,17 @@ LineRange range_of(const Ray<double>&) { return LineRange::ray; }
 LineRange range_of(const Segment<double>&) { return LineRange::segment; }
 
 // The depth margin against a circular cylinder (study/gap.hpp).
-Rational line_gap(const Line<Rational>& l, const Cylinder<double>& c, LineRange range) {
+study::MarginEnclosure line_gap(const Line<Rational>& l, const Cylinder<double>& c, LineRange range) {
   return study::detail::circular_line_gap(l, c.map(exact), range);
 }
 
-// The same against an elliptic cylinder, in its unit frame y = M^-1 (X - base), M = [a b c] (as
-// study::detail::elliptic_line_gap, for every range).
-Rational line_gap(const Line<Rational>& l, const EllipticCylinder<double>& ed, LineRange range) {
-  const EllipticCylinder<Rational> e = ed.map(exact);
-  const Rational det = determinant(e.a, e.b, e.c);
-  const Vec3<Rational> r0 = cross(e.b, e.c), r1 = cross(e.c, e.a), r2 = cross(e.a, e.b);
-  auto to_unit = [&](const Vec3<Rational>& v) { return Vec3<Rational>{dot(r0, v) / det, dot(r1, v) / det, dot(r2, v) / det}; };
-  const Vec3<Rational> w = to_unit(l.origin - e.base), v = to_unit(l.direction);
-  return study::detail::line_depth(v.x * v.x + v.y * v.y, 2 * (w.x * v.x + w.y * v.y), w.x * w.x + w.y * w.y, w.z, v.z, range);
+// The same against an elliptic cylinder, in its unit frame y = M^-1 (X - base), M = [a b c].
+study::MarginEnclosure line_gap(const Line<Rational>& l, const EllipticCylinder<double>& ed, LineRange range) {
+  return study::detail::elliptic_line_gap(l, ed.map(exact), range);
 }
 
 template <class LineLike, class Solid>
-Rational gap_of(const LineLike& l, const Solid& s) {
+study::MarginEnclosure gap_of(const LineLike& l, const Solid& s) {
   return line_gap(exact_line(l), s, range_of(l));
 }
 

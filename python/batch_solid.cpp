@@ -17,21 +17,14 @@ namespace {
 
 Rational exact(double x) { return Rational(x); }
 
-// The depth margin of one point: min(1 - q, s, 1 - s, 1) with s its axial and q its squared
-// radial coordinate (study/gap.hpp), as the margin of a line with direction 0.
+// The depth margin of one point, its depth min(1 - q, s, 1 - s) with s its axial and q its
+// squared radial coordinate (study/gap.hpp).
 Rational point_gap(const Point3<double>& x, const Cylinder<double>& cd) {
-  const Cylinder<Rational> c = cd.map(exact);
-  const Vec3<Rational> A = c.axis(), w = x.map(exact) - c.p0, u = cross(w, A);
-  const Rational AA = squared_length(A);
-  return study::detail::line_depth(0, 0, dot(u, u) / (c.radius * c.radius * AA), dot(w, A) / AA, 0, LineRange::line);
+  return study::detail::circular_point_gap(x.map(exact), cd.map(exact));
 }
 
 Rational point_gap(const Point3<double>& x, const EllipticCylinder<double>& ed) {
-  const EllipticCylinder<Rational> e = ed.map(exact);
-  const Rational det = determinant(e.a, e.b, e.c);
-  const Vec3<Rational> v = x.map(exact) - e.base;
-  const Rational y0 = dot(cross(e.b, e.c), v) / det, y1 = dot(cross(e.c, e.a), v) / det, y2 = dot(cross(e.a, e.b), v) / det;
-  return study::detail::line_depth(0, 0, y0 * y0 + y1 * y1, y2, 0, LineRange::line);
+  return study::detail::elliptic_point_gap(x.map(exact), ed.map(exact));
 }
 
 // Allocates the result of n rows; `row(i, answer, gap)` fills row i (gap: two doubles, or null).
@@ -74,7 +67,7 @@ BatchResult triangle_batch(const Rows& triangles, const Rows& cylinders, unsigne
     const Triangle<double> t = triangles.triangle(i);
     const Cylinder<double> c = cylinders.cylinder(i);
     const TriangleCylinderResult r = certified_triangle_cylinder(t, c);
-    if (g) std::tie(g[0], g[1]) = study::detail::enclose_rational(study::detail::triangle_gap(t.map(exact), c.map(exact), r));
+    if (g) std::tie(g[0], g[1]) = study::detail::enclose_margin_doubles(study::detail::triangle_margin(t.map(exact), c.map(exact)));
     return r.answer;
   });
 }

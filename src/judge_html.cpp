@@ -51,12 +51,15 @@ std::string fmt(const char* format, double v) {
   return buf;
 }
 
-// The gap as the page states it: one number when the enclosure is tight, else the interval.
+// The gap as the page states it, named by its quantity (study/gap.hpp): the depth margin G of a
+// line, ray, segment or triangle, log(phi*) of a cylinder pair; one number when the enclosure
+// is tight, else the interval.
 std::string gap_text(const Case& c) {
-  if (!std::isfinite(c.gap_lo) || !std::isfinite(c.gap_hi)) return "unbounded (equal midpoints: overlapping)";
+  if (!std::isfinite(c.gap_lo) || !std::isfinite(c.gap_hi)) return "log(phi*) unbounded (equal midpoints: overlapping)";
+  const std::string name = c.query == study::Query::cylinder_cylinder ? "log(phi*) " : "depth margin G ";
   if (c.gap_lo == c.gap_hi || std::fabs(c.gap_hi - c.gap_lo) <= 1e-3 * std::max(std::fabs(c.gap_lo), std::fabs(c.gap_hi)))
-    return fmt("%.3g", 0.5 * c.gap_lo + 0.5 * c.gap_hi);
-  return "between " + fmt("%.3g", c.gap_lo) + " and " + fmt("%.3g", c.gap_hi);
+    return name + "= " + fmt("%.3g", 0.5 * c.gap_lo + 0.5 * c.gap_hi);
+  return name + "between " + fmt("%.3g", c.gap_lo) + " and " + fmt("%.3g", c.gap_hi);
 }
 
 const char* query_title(study::Query q) {
@@ -546,8 +549,11 @@ void write_report_page(const std::filesystem::path& file, const Judgement& j) {
        "by k units in the last place (k = 0 on it, k of either sign up to 2^40), so the exact answer changes within "
        "rounding distance; the family <i>uniform</i> holds random inputs for comparison. Each case also has a certified "
        "<i>gap</i>: its sign is the exact answer's (negative separated, zero touching, positive overlapping) and its size how "
-       "far the input is from a change of answer (lines, rays, segments and triangles: a depth in units of the cylinder's "
-       "radius and height; cylinder pairs: the logarithm of the growth factor that makes them touch).</p>\n"
+       "far the input is from a change of answer. Lines, rays, segments and triangles: the depth margin G, the largest over "
+       "the set of min(1 - q, s, 1 - s) (s the axial coordinate in heights, q the squared distance from the axis in units of "
+       "r^2); it is exactly the offset of the cylinder (radius r sqrt(1 - G), each cap moved by G heights) at which the "
+       "answer changes. Cylinder pairs: log(phi*), the logarithm of the common scale factor about the midpoints at which "
+       "the two cylinders touch.</p>\n"
        "<p>A <b>failure</b> is a false positive (the method says the solids meet; they are separated) or a false negative "
        "(it says they are separated; they meet). Touching and overlapping confused, undecided answers, errors of the method "
        "and non-finite values are counted apart. The failure rate is taken among the cases with a certified answer, with "

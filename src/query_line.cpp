@@ -39,25 +39,26 @@ ojson certified_json(const CertifiedLineResult& r) {
   return out;
 }
 
-// The certified signed gap of a line, ray or segment (study/gap.hpp: the depth margin over the
-// allowed range of t; a segment as the line p0 + t (p1 - p0), t in [0, 1]).
+// The certified signed gap of a line, ray or segment (study/gap.hpp: the depth margin
+// G = max d(x) over the allowed range of t, enclosed; a segment as the line p0 + t (p1 - p0),
+// t in [0, 1]).
 template <class Solid>
-Rational depth_margin(const Line<Rational>& l, const Solid& s, LineRange range) {
+study::MarginEnclosure depth_margin(const Line<Rational>& l, const Solid& s, LineRange range) {
   if constexpr (std::is_same_v<Solid, Cylinder<Rational>>)
     return study::detail::circular_line_gap(l, s, range);
   else
     return study::detail::elliptic_line_gap(l, s, range);
 }
 template <class Solid>
-Rational line_gap(const Line<Rational>& l, const Solid& s) {
+study::MarginEnclosure line_gap(const Line<Rational>& l, const Solid& s) {
   return depth_margin(l, s, LineRange::line);
 }
 template <class Solid>
-Rational line_gap(const Ray<Rational>& r, const Solid& s) {
+study::MarginEnclosure line_gap(const Ray<Rational>& r, const Solid& s) {
   return depth_margin(Line<Rational>{r.origin, r.direction}, s, LineRange::ray);
 }
 template <class Solid>
-Rational line_gap(const Segment<Rational>& g, const Solid& s) {
+study::MarginEnclosure line_gap(const Segment<Rational>& g, const Solid& s) {
   return depth_margin(Line<Rational>{g.p0, g.direction()}, s, LineRange::segment);
 }
 

@@ -26,14 +26,17 @@ inline ojson answer_json(Answer a, bool certified, const std::string& method, co
   return ojson{{"answer", std::string(to_string(a))}, {"certified", certified}, {"method", method}, {"nt", nt}};
 }
 
-// The certified signed gap (study/gap.hpp) of a query other than a cylinder pair: the enclosure
-// [lo, hi] in doubles of the exact rational, as `certcyl cases` writes it in meta.gap; null when
-// the exact value lies beyond the finite doubles (JSON has no infinity).
-inline ojson gap_json(const Rational& gap) {
-  const auto [lo, hi] = study::detail::enclose_rational(gap);
+// The certified signed gap (study/gap.hpp) of a query other than a cylinder pair, the depth
+// margin G: the enclosure [lo, hi] in doubles of G (lo == hi when G is that double), as
+// `certcyl cases` writes it in meta.gap; null when G lies beyond the finite doubles (JSON has no
+// infinity).
+inline ojson gap_json(const study::MarginEnclosure& gap) {
+  const auto [lo, hi] = study::detail::enclose_margin_doubles(gap);
   if (!std::isfinite(lo) || !std::isfinite(hi)) return nullptr;
   return ojson::array({lo, hi});
 }
+// The same for a point's margin, its depth, an exact rational.
+inline ojson gap_json(const Rational& gap) { return gap_json(study::MarginEnclosure{gap, gap}); }
 
 // `answer` with "gap" placed where the cylinder pair has it: after the common fields (answer,
 // certified, method, nt) and the pair's stage, before the query's own.

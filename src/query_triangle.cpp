@@ -43,7 +43,7 @@ ojson answer_triangle(const json& in, const QueryOptions& o) {
   const Cylinder<Rational> c = reader.cylinder(JsonReader::member(in, "", "cylinder"), "cylinder");
   if (o.method == "certified") {
     const TriangleCylinderResult r = certified_triangle_cylinder(t, c);
-    return with_gap(triangle_cylinder_json(r), gap_json(study::detail::triangle_gap(t, c, r)));
+    return with_gap(triangle_cylinder_json(r), gap_json(study::detail::triangle_margin(t, c)));
   }
   std::string label;
   ojson out = run_in_number_type(o, reader.all_binary64(), false, [&]<class NT>() -> Answer {

@@ -1,5 +1,6 @@
 // `certcyl query`'s "gap", the certified signed gap, for every query kind: hand-derived values
-// of the depth margin (src/study/gap.hpp) worked out in comments, and, over the study's tiny
+// of the depth margin G = max over the set of min(1 - q, s, 1 - s) (src/study/gap.hpp) worked
+// out in comments, irrational ones checked exactly against their closed form, and, over the study's tiny
 // cases of every query, the gap's sign against the certified answer and the gap of `certcyl
 // cases` on the same line.
 #define BOOST_TEST_MODULE cli_query_gap
@@ -65,54 +66,63 @@ void check_enclosed_gap(const json& a, int num, int den, const std::string& answ
   BOOST_TEST(hi == std::nextafter(lo, 2.0), a.dump());
 }
 
+// Asserts that the gap encloses (p + sqrt(n)) / den (irrational), checked exactly, between
+// adjacent doubles.
+void check_root_gap(const json& a, int p, int n, int den, const std::string& answer) {
+  BOOST_TEST(a["answer"] == answer, a.dump());
+  BOOST_TEST_REQUIRE(a["gap"].is_array(), a.dump());
+  const double lo = a["gap"][0].get<double>(), hi = a["gap"][1].get<double>();
+  const Rational x = Rational(lo) * den - p, y = Rational(hi) * den - p;
+  BOOST_TEST((x <= 0 || x * x < Rational(n)), a.dump());
+  BOOST_TEST((y >= 0 && Rational(n) < y * y), a.dump());
+  BOOST_TEST(hi == std::nextafter(lo, 2.0), a.dump());
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(lines_worked_out_by_hand) {
-  // gap = min(m_tube, m_cap0, m_cap1, 1); s(t) and q(t) along X = origin + t direction.
-  // Through (0,0,1/2) along x: s = 1/2, so m_cap0 = max s = 1/2 and m_cap1 = max(1 - s) = 1/2;
-  // q = t^2, min 0: m_tube = 1. gap = 1/2.
+  // gap = max over t of d(t) = min(1 - q(t), s(t), 1 - s(t)) along X = origin + t direction.
+  // Through (0,0,1/2) along x: s = 1/2, q = t^2: d = min(1 - t^2, 1/2), largest at t = 0: 1/2.
   check_exact_gap(answer_of(line_query("line_cylinder", R"("line": {"origin": [0,0,0.5], "direction": [1,0,0]})", unit)),
                   0.5, "overlapping");
-  // Through (2,0,1/2) along y, 2 from the axis: q = 4 + t^2, m_tube = 1 - 4 = -3 < 0; the
-  // sample points are t = 0 (the nearest to the axis): d = min(1 - 4, 1/2, 1/2) = -3.
+  // Through (2,0,1/2) along y, 2 from the axis: q = 4 + t^2: d = min(-3 - t^2, 1/2): -3 at t = 0.
   check_exact_gap(answer_of(line_query("line_cylinder", R"("line": {"origin": [2,0,0.5], "direction": [0,1,0]})", unit)),
                   -3.0, "separated");
-  // Tangent: through (1,0,1/2) along y, q = 1 + t^2, m_tube = 0. gap = 0.
+  // Tangent: through (1,0,1/2) along y, q = 1 + t^2: d = min(-t^2, 1/2), 0 at t = 0.
   check_exact_gap(answer_of(line_query("line_cylinder", R"("line": {"origin": [1,0,0.5], "direction": [0,1,0]})", unit)),
                   0.0, "touching");
-  // Parallel to the axis at x = 1/2: s = t unbounded both ways, so m_cap0 = m_cap1 = 1 (clamped);
-  // within the slab (t in [0, 1]) q = 1/4: m_tube = 3/4. gap = 3/4.
+  // Parallel to the axis at x = 1/2: q = 1/4, s = t: d = min(3/4, t, 1 - t), at most
+  // min(s, 1 - s) <= 1/2, which t = 1/2 attains. gap = 1/2.
   check_exact_gap(answer_of(line_query("line_cylinder", R"("line": {"origin": [0.5,0,0], "direction": [0,0,1]})", unit)),
-                  0.75, "overlapping");
-  // A third of the height: through (0,0,"1/3") along x, s = 1/3: m_cap0 = 1/3, m_cap1 = 2/3,
-  // m_tube = 1. gap = 1/3, not a double: enclosed by adjacent doubles.
+                  0.5, "overlapping");
+  // A third of the height: through (0,0,"1/3") along x, s = 1/3: d = min(1 - t^2, 1/3, 2/3),
+  // 1/3 at t = 0, not a double: enclosed by adjacent doubles.
   check_enclosed_gap(answer_of(line_query("line_cylinder", R"("line": {"origin": [0,0,"1/3"], "direction": [1,0,0]})", unit)),
                      1, 3, "overlapping");
 }
 
 BOOST_AUTO_TEST_CASE(rays_and_segments_are_clipped_to_their_range) {
   // The ray from (2,0,1/2) along +x: t >= 0, q = (2 + t)^2 >= 4 (its line through the axis
-  // would have gap 1/2): m_tube = 1 - 4 = -3, and the sample points all clamp to t = 0,
-  // d = min(-3, 1/2, 1/2) = -3.
+  // would have gap 1/2): d = min(1 - (2 + t)^2, 1/2), largest at t = 0: -3.
   check_exact_gap(answer_of(line_query("ray_cylinder", R"("ray": {"origin": [2,0,0.5], "direction": [1,0,0]})", unit)),
                   -3.0, "separated");
-  // The ray up the axis from z = 3/4: s = 3/4 + t, t >= 0: m_cap0 = 1 (unbounded, clamped),
-  // m_cap1 = max(1 - s) = 1/4 at t = 0; q = 0: m_tube = 1. gap = 1/4 (the line's is 1).
+  // The ray up the axis from z = 3/4: s = 3/4 + t, t >= 0, q = 0: d = min(1, s, 1 - s) = 1 - s
+  // (s >= 3/4), largest at t = 0: 1/4. Its line reaches s = 1/2: gap 1/2.
   check_exact_gap(answer_of(line_query("ray_cylinder", R"("ray": {"origin": [0,0,0.75], "direction": [0,0,1]})", unit)),
                   0.25, "overlapping");
   check_exact_gap(answer_of(line_query("line_cylinder", R"("line": {"origin": [0,0,0.75], "direction": [0,0,1]})", unit)),
-                  1.0, "overlapping");
-  // The segment on the axis from z = 1/4 to z = 1/2: s = 1/4 + t/4, t in [0, 1]: m_cap0 = 1/2,
-  // m_cap1 = 3/4, m_tube = 1. gap = 1/2.
+                  0.5, "overlapping");
+  // The segment on the axis from z = 1/4 to z = 1/2: s = 1/4 + t/4, t in [0, 1], q = 0:
+  // d = min(s, 1 - s) = s, 1/2 at t = 1.
   check_exact_gap(answer_of(line_query("segment_cylinder", R"("segment": {"p0": [0,0,0.25], "p1": [0,0,0.5]})", unit)),
                   0.5, "overlapping");
-  // The segment from z = 2 to z = 3 on the axis: m_cap1 = max(1 - s) = 1 - 2 = -1 < 0; every
-  // sample point clamps to t = 0: d = min(1 - 0, 2, 1 - 2) = -1.
+  // The segment from z = 2 to z = 3 on the axis: d = min(1, s, 1 - s) = 1 - s, s in [2, 3]:
+  // -1 at t = 0.
   check_exact_gap(answer_of(line_query("segment_cylinder", R"("segment": {"p0": [0,0,2], "p1": [0,0,3]})", unit)),
                   -1.0, "separated");
-  // Segments along x at z = 1/2 (s = 1/2, so m_cap0 = m_cap1 = 1/2). From (0,0,1/2) to
-  // (1,0,1/2): q = t^2, min 0: gap 1/2. From (1,0,1/2) to (3,0,1/2): q = (1 + 2t)^2, its
-  // minimum over t in [0, 1] is 1 at t = 0: m_tube = 0, touching at p0.
+  // Segments along x at z = 1/2 (s = 1/2, d = min(1 - q, 1/2)). From (0,0,1/2) to (1,0,1/2):
+  // q = t^2: gap 1/2 at t = 0. From (1,0,1/2) to (3,0,1/2): q = (1 + 2t)^2 >= 1, 1 at t = 0:
+  // gap 0, touching at p0.
   check_exact_gap(answer_of(line_query("segment_cylinder", R"("segment": {"p0": [0,0,0.5], "p1": [1,0,0.5]})", unit)),
                   0.5, "overlapping");
   check_exact_gap(answer_of(line_query("segment_cylinder", R"("segment": {"p0": [1,0,0.5], "p1": [3,0,0.5]})", unit)),
@@ -120,44 +130,49 @@ BOOST_AUTO_TEST_CASE(rays_and_segments_are_clipped_to_their_range) {
 }
 
 BOOST_AUTO_TEST_CASE(elliptic_lines_rays_and_segments) {
-  // In unit coordinates (x/2, y, z). The line through (0,1,1/2) along x: q = t^2/4 + 1, min 1:
-  // m_tube = 0, tangent. gap = 0.
+  // In unit coordinates (x/2, y, z). The line through (0,1,1/2) along x: q = t^2/4 + 1, s = 1/2:
+  // d = min(-t^2/4, 1/2), 0 at t = 0, tangent.
   check_exact_gap(
       answer_of(line_query("line_elliptic_cylinder", R"("line": {"origin": [0,1,0.5], "direction": [1,0,0]})", ellipse)), 0.0,
       "touching");
-  // The line through (1,0,1/2) along x: q = (1 + t)^2/4, min 0: m_tube = 1; s = 1/2. gap = 1/2.
+  // The line through (1,0,1/2) along x: q = (1 + t)^2/4, s = 1/2: d = 1/2 at t = -1.
   check_exact_gap(
       answer_of(line_query("line_elliptic_cylinder", R"("line": {"origin": [1,0,0.5], "direction": [1,0,0]})", ellipse)), 0.5,
       "overlapping");
-  // The segment from (3,0,1/2) to (5,0,1/2): q = (3/2 + t)^2, t in [0, 1], min 9/4: m_tube = -5/4;
-  // the sample points clamp to t = 0: d = min(1 - 9/4, 1/2, 1/2) = -5/4 (its line's gap is 1/2).
+  // The segment from (3,0,1/2) to (5,0,1/2): q = (3/2 + t)^2, t in [0, 1], least 9/4 at t = 0:
+  // d = min(1 - 9/4, 1/2) = -5/4 (its line's gap is 1/2).
   check_exact_gap(
       answer_of(line_query("segment_elliptic_cylinder", R"("segment": {"p0": [3,0,0.5], "p1": [5,0,0.5]})", ellipse)), -1.25,
       "separated");
-  // The ray up the axis from z = 3/4, direction (0,0,2): s = 3/4 + 2t, t >= 0: m_cap1 = 1/4.
+  // The ray up the axis from z = 3/4, direction (0,0,2): s = 3/4 + 2t, t >= 0, q = 0:
+  // d = 1 - s, 1/4 at t = 0.
   check_exact_gap(
       answer_of(line_query("ray_elliptic_cylinder", R"("ray": {"origin": [0,0,0.75], "direction": [0,0,2]})", ellipse)), 0.25,
       "overlapping");
 }
 
 BOOST_AUTO_TEST_CASE(triangles_worked_out_by_hand) {
-  // gap = min(1, max s, 1 - min s) and, when that is >= 0, 1 - q at the point of the triangle
-  // in the slab nearest the axis.
-  // Vertices (3/4,0,1/4), (3/4,1/2,3/4), (1,0,3/4): s in [1/4, 3/4], so min(1, 3/4, 3/4) = 3/4;
-  // x >= 3/4 and y >= 0 on the triangle, so the nearest point is (3/4,0,1/4), q = 9/16:
-  // m_tube = 7/16. gap = 7/16.
-  check_exact_gap(answer_of(R"({"query": "triangle_cylinder", "triangle": [[0.75,0,0.25],[0.75,0.5,0.75],[1,0,0.75]], )" +
-                            unit + "}"),
-                  0.4375, "overlapping");
+  // gap = max over the triangle of d = min(1 - q, s, 1 - s).
+  // Vertices v0 = (3/4,0,1/4), v1 = (3/4,1/2,3/4), v2 = (1,0,3/4): the points v0 + a (v1 - v0)
+  // + b (v2 - v0) have x = 3/4 + b/4, y = a/2, s = 1/4 + (a + b)/2, so at equal s a point with
+  // b > 0 has the larger x and the larger q than the point with b = 0 (y then larger by b/2, q
+  // up by less: d/db of x^2 >= 3/8 > (a/2)(1/2) = d/db of y^2 along a + b = const while a <= 1):
+  // the maximum lies on the edge b = 0, where 1 - q = 7/16 - a^2/4 falls and s = 1/4 + a/2 rises;
+  // they meet at 4a^2 + 8a - 3 = 0, a = (sqrt(7) - 2)/2 (s ~ 0.41 < 1/2, so 1 - s is not active):
+  // gap = s = (sqrt(7) - 1)/4, irrational.
+  check_root_gap(answer_of(R"({"query": "triangle_cylinder", "triangle": [[0.75,0,0.25],[0.75,0.5,0.75],[1,0,0.75]], )" +
+                           unit + "}"),
+                 -1, 7, 4, "overlapping");
   // The same with x from 0.6 (vertices (0.6,0,0.2), (0.6,0.5,0.7), (0.8,0,0.7), read exactly):
-  // min(1, 0.7, 0.8) = 0.7, nearest point (0.6,0,0.2), q = 9/25: m_tube = 16/25. gap = 16/25.
-  check_enclosed_gap(answer_of(R"({"query": "triangle_cylinder", "triangle": [["0.6",0,"0.2"],["0.6","0.5","0.7"],["0.8",0,"0.7"]], )" +
-                               unit + "}"),
-                     16, 25, "overlapping");
-  // Lifted to z in [2, 3]: 1 - min s = -1. gap = -1.
+  // on the edge b = 0 at a = 3/5, the point (3/5, 3/10, 1/2) has q = 9/25 + 9/100 = 9/20 and
+  // s = 1/2: d = min(11/20, 1/2, 1/2) = 1/2, the largest any point can have. gap = 1/2.
+  check_exact_gap(answer_of(R"({"query": "triangle_cylinder", "triangle": [["0.6",0,"0.2"],["0.6","0.5","0.7"],["0.8",0,"0.7"]], )" +
+                            unit + "}"),
+                  0.5, "overlapping");
+  // Lifted to z in [2, 3]: d <= 1 - s <= -1, and d(0,0,2) = min(1, 2, -1) = -1. gap = -1.
   check_exact_gap(answer_of(R"({"query": "triangle_cylinder", "triangle": [[0,0,2],[1,0,3],[0,1,3]], )" + unit + "}"), -1.0,
                   "separated");
-  // In the cap plane z = 1: max s = 1, 1 - min s = 0. gap = 0.
+  // In the cap plane z = 1: 1 - s = 0 everywhere, and 1 - q > 0 at (0,0,1). gap = 0.
   check_exact_gap(
       answer_of(R"({"query": "triangle_cylinder", "triangle": [[-0.5,0,1],[0.5,0,1],[0,0.5,1]], )" + unit + "}"), 0.0,
       "touching");

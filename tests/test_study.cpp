@@ -69,11 +69,11 @@ Instance certified(Query q, std::vector<double> x) {
 
 }  // namespace
 
-// Hand-derived gaps (study/gap.hpp): min(m_tube, m_cap0, m_cap1, 1), s and q in units of the
-// height and of r^2.
+// Hand-derived gaps (study/gap.hpp): the depth margin, the largest min(1 - q, s, 1 - s) over the
+// set, s and q in units of the height and of r^2 (tests/test_study_gap.cpp has more).
 BOOST_AUTO_TEST_CASE(gap_by_hand) {
-  // Line through (1/2, 0, 1) along y: s = 1/2 everywhere (m_cap0 = m_cap1 = 1/2), distance 1/2
-  // from the axis (m_tube = 3/4): gap 1/2, overlapping.
+  // Line through (1/2, 0, 1) along y: s = 1/2 everywhere, q = 1/4 + t^2: min(3/4 - t^2, 1/2),
+  // gap 1/2 at t = 0, overlapping.
   Instance a = certified(Query::line_cylinder, with_unit_cylinder({0.5, 0, 1, 0, 1, 0}));
   BOOST_TEST(a.gap_lo == 0.5);
   BOOST_TEST(a.gap_hi == 0.5);
@@ -87,16 +87,16 @@ BOOST_AUTO_TEST_CASE(gap_by_hand) {
   BOOST_TEST(c.gap_lo == 0.0);
   BOOST_TEST(c.gap_hi == 0.0);
   BOOST_TEST(c.certified == Answer::touching);
-  // Ray from (0,0,3) upward along the axis: above the cap, s from 3/2 up: m_cap1 = 1 - 3/2 = -1/2.
+  // Ray from (0,0,3) upward along the axis: above the cap, s from 3/2 up: 1 - s <= -1/2, gap -1/2.
   Instance d = certified(Query::ray_cylinder, with_unit_cylinder({0, 0, 3, 0, 0, 1}));
   BOOST_TEST(d.gap_hi == -0.5);
   // Triangle in the plane z = 1 with a vertex at distance 1/4 from the axis, others outside:
-  // X* = (1/4, 0, 1), q = 1/16: m_tube = 15/16; the caps give 1/2: gap 1/2.
+  // at (1/4, 0, 1), q = 1/16 and s = 1/2: min(15/16, 1/2, 1/2) = 1/2, the most any point has: gap 1/2.
   Instance t = certified(Query::triangle_cylinder, {0.25, 0, 1, 5, 1, 1, 5, -1, 1, 0, 0, 0, 0, 0, 2, 1});
   BOOST_TEST(t.gap_lo == 0.5);
   BOOST_TEST(t.certified == Answer::overlapping);
   // Elliptic cylinder a = (2,0,0), b = (0,1,0), c = (0,0,1) at the origin; the line x = 1 along y,
-  // z = 1/2: unit x = 1/2, q = 1/4: m_tube = 3/4, caps 1/2: gap 1/2.
+  // z = 1/2: unit x = 1/2, q = 1/4 + t^2, s = 1/2: min(3/4 - t^2, 1/2), gap 1/2.
   Instance e = certified(Query::line_elliptic_cylinder, {1, 0, 0.5, 0, 1, 0, 0, 0, 0, 2, 0, 0, 0, 1, 0, 0, 0, 1});
   BOOST_TEST(e.gap_lo == 0.5);
   // Cylinders side by side at distance 3 > 1 + 1: log(phi*) < 0; coaxial nested: > 0.
