@@ -265,6 +265,12 @@ def disagreement_tables(families, out):
              "colour is that count's share of the decided answers; an empty white cell is a method without a wrong answer there.")
 
 
+def gap_quantity(query):
+    """What a query's signed gap is (src/study/gap.hpp): the depth margin G for the queries against
+    one cylinder, the log growth factor log(phi*) for cylinder pairs. Axes never pool the two."""
+    return "$\\log\\varphi^*$" if query == "cylinder_cylinder" else "depth margin $G$"
+
+
 def gap_bin(lo, hi):
     """Signed log10 bin of the certified gap's bound nearest zero: 0 when the enclosure contains 0
     (touching, or a gap not resolved from 0), +-(e + 21) for 10^(e-1) <= |gap| < 10^e."""
@@ -286,8 +292,9 @@ def gap_rate(rows, out):
         cell = by_query[r["query"]][r["method"]][b]
         cell[0] += 1
         cell[1] += r["outcome"] in ("false_positive", "false_negative")
-    sides = ((-1, "tab:blue", "o", "separated side (gap < 0)"), (1, "tab:orange", "s", "overlapping side (gap > 0)"))
     for query, methods in by_query.items():
+        sides = ((-1, "tab:blue", "o", f"separated side ({gap_quantity(query)} < 0)"),
+                 (1, "tab:orange", "s", f"overlapping side ({gap_quantity(query)} > 0)"))
         wrong = [m for m, bins in methods.items() if any(c[1] for c in bins.values())]
         if not wrong:
             continue
@@ -321,7 +328,9 @@ def gap_rate(rows, out):
                 ax.tick_params(labelbottom=False)
             else:
                 ax.tick_params(labelbottom=True)
-        fig.supxlabel("$\\log_{10}$ of the certified gap's bound nearest 0, $|$gap$|$ (upper edge of bin)", fontsize=7, y=0.01)
+        quantity = gap_quantity(query)
+        fig.supxlabel(f"$\\log_{{10}}$ of the certified lower bound of $|${quantity}$|$, the signed gap (upper edge of bin)",
+                      fontsize=7, y=0.01)
         fig.supylabel("disagreement rate (FP + FN)", fontsize=7)
         handles = [plt.Line2D([], [], color=c, marker=mk, ms=3, lw=0.9, label=label) for _, c, mk, label in sides]
         fig.legend(handles=handles, loc="upper center", ncol=2, fontsize=6.5, frameon=False, bbox_to_anchor=(0.5, 1 - 0.3 / height))
@@ -330,7 +339,10 @@ def gap_rate(rows, out):
                      fontsize=7.5, y=1 - 0.05 / height, va="top")
         save(fig, out, f"gap_rate_{query}",
              f"One panel per method that gave a wrong answer to the {QUERY_TITLES.get(query, query)} query (most wrong answers first): "
-             "each point is the share of wrong answers among the instances whose certified gap lies in a power-of-ten bin, blue on "
+             "each point is the share of wrong answers among the instances whose certified signed gap (here "
+             + ("log phi*, the log of the growth factor at which the two cylinders touch" if query == "cylinder_cylinder" else
+                "the depth margin G, the offset of the cylinder at which the answer changes")
+             + ") lies in a power-of-ten bin of its certified lower bound, blue on "
              "the separated side and orange on the overlapping side, so a method that fails only near a degeneracy has points only "
              "at the left; a bin with few instances jumps between 0 and 1.",
              tight=False)
@@ -483,14 +495,17 @@ def gap_rate_overview(rows, out):
             ax.plot(xs, ys, marker=NT_MARKERS.get(nt, "o"), ms=3.5, lw=0.9, color=ALGO_COLOURS.get(base, "grey"),
                     ls="-" if nt != "long_double" else "--", label=m.replace("_as_written", " (as written)"))
         ax.set_title(title, fontsize=8)
-        ax.set_xlabel("$\\log_{10}$ of $|$gap$|$ (bin upper edge)", fontsize=7)
+        quantity = gap_quantity(groups[gi][1][0])
+        ax.set_xlabel(f"$\\log_{{10}}$ of $|${quantity}$|$ (bin upper edge)", fontsize=7)
         ax.tick_params(labelsize=7)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=5.2, loc="upper right", frameon=False)
     axes[0].set_ylabel("disagreement rate (FP + FN)", fontsize=7)
     save(fig, out, "gap_rate_overview",
          "The methods in hardware precision (double, long double, float) with wrong answers, at most 8 per panel: the share of "
-         "wrong answers against the size of the certified gap in powers of ten, both sides pooled; a method's line falls to 0 "
+         "wrong answers against the certified lower bound of the signed gap's size in powers of ten, both sides pooled: the depth "
+         "margin G (the offset of the cylinder that changes the answer) for lines and triangles, log phi* (the log growth factor "
+         "at which the cylinders touch) for cylinder pairs, each panel on its own axis; a method's line falls to 0 "
          "once the input is far enough from a degeneracy for its precision.",
          dpi=150)
 
