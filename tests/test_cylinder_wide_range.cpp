@@ -229,6 +229,30 @@ BOOST_AUTO_TEST_CASE(pancake_on_a_rim_wall_and_cap_edge_is_overlapping) {
   }
 }
 
+// Found by the pair fuzz harness: a needle a of radius about 2^-45 from (0, 0, 99) to
+// (2, 22.5, 0.703125), and a disc b of radius 2.75 about (0, 0, 90), 2^-1008 thick along x.
+// D = (50, 0, 1) separates them by construction: D.X <= 92.75 on b (x <= 0, z <= 92.75) and
+// D.X >= 99 - 50 2^-44 on a (50 x + z = 99 + 1.70 t along a's axis, t in [0, 1]). In the world
+// frame b's axis is about 2^-1014 long and its squared length underflows in double; the
+// optimiser scales each axis by a power of two for its radial terms, so the double stages
+// decide the pair (before, they failed and the ellipsoid stage decided it, some 10 ms a query).
+BOOST_AUTO_TEST_CASE(needle_above_a_disc_thinner_than_the_double_range_is_decided_in_double) {
+  const certcyl::Cylinder<double> a{{0, 0, 0x1.8cp+6}, {2, 0x1.68p+4, 0x1.68p-1}, 0x1.7d580d90001p-45};
+  const certcyl::Cylinder<double> b{{0, 0, 0x1.68p+6}, {-0x1.fffffff2d01p-1008, 0, 0x1.68p+6}, 0x1.6p+1};
+  const auto to_q = [](double x) { return Q(x); };
+  const Cylinder<Q> qa = a.map(to_q), qb = b.map(to_q);
+  BOOST_REQUIRE(certcyl::detail::separation_sign(certcyl::detail::CylinderPair<Q>::make(qa, qb), certcyl::Vec3<Q>{Q(50), Q(0), Q(1)}) ==
+                CGAL::POSITIVE);
+  for (const bool swap : {false, true}) {
+    const auto r = swap ? certcyl::certified_cylinder_cylinder(b, a) : certcyl::certified_cylinder_cylinder(a, b);
+    BOOST_TEST_CONTEXT((swap ? "swapped: " : "") << "stage " << to_string(r.stage)) {
+      BOOST_TEST(r.answer == Answer::separated);
+      BOOST_TEST(certcyl::recheck::check_cylinder_pair(swap ? qb : qa, swap ? qa : qb, r) == "");
+      BOOST_TEST((r.stage == certcyl::CylinderStage::optimiser || r.stage == certcyl::CylinderStage::refine));
+    }
+  }
+}
+
 // Found by the pair fuzz harness (15 s and 6.5 s per query before): two overlapping pairs whose
 // common interior is a sliver around a point of the larger cylinder's rim or cap, far too thin
 // for the Gmpfr rounds below 8,192 bits.
