@@ -1376,7 +1376,7 @@ class CylinderCylinderSolver {
   // other's slab (the sliver between a cap plane and the side of a tube it crosses).
   template <class R>
   bool tube_shift_witness(const CylinderPair<R>& e, const HomogeneousPoint<R>& cj_point, const HomogeneousPoint<R>& ci_point, int j) {
-    const auto [cj, ci, Aj, Ai, AAj, AAi] = roles(e, j);
+    const auto [cj, ci, Aj, Ai, AAj, AAi] = pair_roles(e, j);
     const Vec3<R> towards = ci_point.n * cj_point.w - cj_point.n * ci_point.w;  // a positive multiple of c_i - c_j
     const R two(2), four(4);
     for (const Vec3<R>& d : {Ai, Vec3<R>(-Ai), towards}) {
@@ -1534,21 +1534,7 @@ class CylinderCylinderSolver {
   }
 
   // Cylinder j of the exact pair and the other one, i, with their axes and squared lengths.
-  // Cylinder j of a pair and the other one, i, with their axes and squared lengths.
-  template <class R>
-  struct Roles {
-    const Cylinder<R>& cj;
-    const Cylinder<R>& ci;
-    const Vec3<R>& Aj;
-    const Vec3<R>& Ai;
-    const R& AAj;
-    const R& AAi;
-  };
-  template <class R>
-  static Roles<R> roles(const CylinderPair<R>& e, int j) {
-    return j == 0 ? Roles<R>{e.c0, e.c1, e.A0, e.A1, e.AA0, e.AA1} : Roles<R>{e.c1, e.c0, e.A1, e.A0, e.AA1, e.AA0};
-  }
-  Roles<Rational> roles(int j) { return roles(exact(), j); }
+  PairRoles<Rational> roles(int j) { return pair_roles(exact(), j); }  // of the exact pair
 
   // Points of an end disc of cylinder j, for an end E of j that lies in the closed cylinder i
   // (a thin cylinder ending on or in the other, whose common interior can be a sliver of its end
@@ -1560,7 +1546,7 @@ class CylinderCylinderSolver {
   // checked exactly.
   template <class R>
   bool end_disc_witness(const CylinderPair<R>& e, int j) {
-    const auto [cj, ci, Aj, Ai, AAj, AAi] = roles(e, j);
+    const auto [cj, ci, Aj, Ai, AAj, AAi] = pair_roles(e, j);
     const R a_max = largest_coordinate(Aj), two(2), four(4);
     for (const bool far_end : {false, true}) {
       const Point3<R>& E = far_end ? cj.p1 : cj.p0;
@@ -1628,12 +1614,10 @@ class CylinderCylinderSolver {
   // it), after the others failed.
   template <class R>
   bool cap_disk_witness(const CylinderPair<R>& e, int i, bool rim) {
-    const Cylinder<R>& ci = i == 0 ? e.c0 : e.c1;
-    const Cylinder<R>& cj = i == 0 ? e.c1 : e.c0;
-    const Vec3<R>& Ai = i == 0 ? e.A0 : e.A1;
-    const Vec3<R>& Aj = i == 0 ? e.A1 : e.A0;
-    const R& AAi = i == 0 ? e.AA0 : e.AA1;
-    const R& AAj = i == 0 ? e.AA1 : e.AA0;
+    const PairRoles<R> parts = pair_roles(e, 1 - i);  // (not a structured binding: the lambda below captures its parts)
+    const Cylinder<R>&ci = parts.ci, &cj = parts.cj;
+    const Vec3<R>&Ai = parts.Ai, &Aj = parts.Aj;
+    const R&AAi = parts.AAi, &AAj = parts.AAj;
     const long ri_binade = binade(ci.radius);
     for (const bool far_end : {false, true}) {
       const Point3<R>& E = far_end ? ci.p1 : ci.p0;

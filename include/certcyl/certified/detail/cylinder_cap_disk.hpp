@@ -46,6 +46,21 @@
 
 namespace certcyl::detail {
 
+// Cylinder j of a pair and the other one, i, with their axes and squared lengths.
+template <class R>
+struct PairRoles {
+  const Cylinder<R>& cj;
+  const Cylinder<R>& ci;
+  const Vec3<R>& Aj;
+  const Vec3<R>& Ai;
+  const R& AAj;
+  const R& AAi;
+};
+template <class R>
+PairRoles<R> pair_roles(const CylinderPair<R>& e, int j) {
+  return j == 0 ? PairRoles<R>{e.c0, e.c1, e.A0, e.A1, e.AA0, e.AA1} : PairRoles<R>{e.c1, e.c0, e.A1, e.A0, e.AA1, e.AA0};
+}
+
 template <class R>
 struct HomogeneousPoint {
   Point3<R> n;
@@ -114,12 +129,7 @@ std::optional<HomogeneousPoint<R>> cap_disk_toward_axis(const HomogeneousPoint<R
 // span (CylinderCylinderSolver::input_span_bits).
 template <class R>
 std::vector<HomogeneousPoint<R>> cap_disk_points(const CylinderPair<R>& e, int i, bool far_end, bool rim, long span_bits) {
-  const Cylinder<R>& ci = i == 0 ? e.c0 : e.c1;
-  const Cylinder<R>& cj = i == 0 ? e.c1 : e.c0;
-  const Vec3<R>& Ai = i == 0 ? e.A0 : e.A1;
-  const Vec3<R>& Aj = i == 0 ? e.A1 : e.A0;
-  const R& AAi = i == 0 ? e.AA0 : e.AA1;
-  const R& AAj = i == 0 ? e.AA1 : e.AA0;
+  const auto [cj, ci, Aj, Ai, AAj, AAi] = pair_roles(e, 1 - i);
   const Point3<R>& E = far_end ? ci.p1 : ci.p0;
   const R zero(0), one(1), two(2);
   std::vector<HomogeneousPoint<R>> out;
