@@ -64,7 +64,7 @@ BatchResult line_batch(const std::string& query, const Rows& first, const Rows& 
     answer[i] = static_cast<std::int8_t>(answer_code(r.answer));
     in[i] = r.in ? r.in->nearest : nan;
     end[i] = r.out ? r.out->nearest : nan;
-    if (g) std::tie(g[2 * i], g[2 * i + 1]) = study::detail::enclose_rational(gap_of(line, cylinder));
+    if (g) std::tie(g[2 * i], g[2 * i + 1]) = study::detail::enclose_margin_doubles(gap_of(line, cylinder));
   });
   out.t_in = std::move(t_in);
   out.t_out = std::move(t_out);
