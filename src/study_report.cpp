@@ -163,17 +163,17 @@ struct Times {
 
 constexpr const char* kTimesColumns = "n,p10_ns,p50_ns,p90_ns,mean_ns,max_ns";
 
-// dir/timing_thread.csv, or, in a merged folder without one, its shards' rows gathered into it.
+// The rows of dir/timing_thread.csv; in a merged folder (one holding shard-* folders) its shards'
+// rows, written into dir/timing_thread.csv (again at every merge).
 std::vector<std::string> timing_threads(const fs::path& dir) {
   std::vector<fs::path> files;
-  if (fs::exists(dir / "timing_thread.csv")) {
-    files.push_back(dir / "timing_thread.csv");
-  } else if (fs::is_directory(dir)) {
+  if (fs::is_directory(dir))
     for (const auto& e : fs::directory_iterator(dir))
       if (e.is_directory() && e.path().filename().string().rfind("shard-", 0) == 0 && fs::exists(e.path() / "timing_thread.csv"))
         files.push_back(e.path() / "timing_thread.csv");
-    std::sort(files.begin(), files.end());
-  }
+  std::sort(files.begin(), files.end());
+  const bool merged = !files.empty();
+  if (!merged && fs::exists(dir / "timing_thread.csv")) files.push_back(dir / "timing_thread.csv");
   std::vector<std::string> lines;
   for (const fs::path& f : files) {
     std::ifstream in(f);
@@ -182,7 +182,7 @@ std::vector<std::string> timing_threads(const fs::path& dir) {
     while (std::getline(in, line))
       if (!line.empty()) lines.push_back(line);
   }
-  if (!fs::exists(dir / "timing_thread.csv") && !files.empty()) {
+  if (merged) {
     std::ofstream out(dir / "timing_thread.csv");
     out << kTimingThreadHeader << '\n';
     for (const std::string& l : lines) out << l << '\n';
