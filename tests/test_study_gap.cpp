@@ -245,3 +245,29 @@ BOOST_AUTO_TEST_CASE(euclidean_clearance) {
   const double H = CGAL::to_double(h.lo);
   BOOST_TEST(std::min(1 - std::sqrt(1 - H), H) > 0.25);
 }
+
+// The bisection without a guess, on a comparison known in closed form: G = c (sqrt(2) - 1) for
+// scales c of either sign and sizes from 2^-300 to 2^40 (sign(G - delta) decided exactly by
+// squaring). The enclosure must contain G (checked exactly) and have a relative width of at
+// most 2^-23; a guess that does not bracket G must be rejected.
+BOOST_AUTO_TEST_CASE(bisection_without_a_guess) {
+  for (const long e : {-300L, -40L, -2L, 0L, 40L}) {
+    for (const int sign : {1, -1}) {
+      const Rational c = sign * power_of_two(e);
+      if (sign > 0 && e > -2) continue;  // G <= 1/2
+      // sign(c (sqrt(2) - 1) - delta) = sign(c) sign(sqrt(2) - (1 + delta / c)).
+      const auto cmp = [&](const Rational& delta) {
+        const Rational y = 1 + delta / c;
+        const int s = y < 0 ? 1 : (y * y < 2 ? 1 : (y * y > 2 ? -1 : 0));
+        return sign * s;
+      };
+      const Rational floor = sign > 0 ? Rational(0) : Rational(-1) * power_of_two(e + 1);  // a lower bound of G
+      const std::vector<std::pair<Rational, Rational>> wrong_guess{{c / 2, c / 3}, {c * 2, c * 3}};
+      const MarginEnclosure g = enclose_margin(cmp, sign, floor, wrong_guess);
+      // lo <= c (sqrt(2) - 1) <= hi, i.e. (for c > 0) lo / c + 1 <= sqrt(2) <= hi / c + 1.
+      const Rational a = (sign > 0 ? g.lo : g.hi) / c + 1, b = (sign > 0 ? g.hi : g.lo) / c + 1;
+      BOOST_TEST((a * a <= 2 && 2 <= b * b), "e = " << e << " sign " << sign);
+      BOOST_TEST(((g.hi - g.lo) * power_of_two(23) <= (sign > 0 ? g.lo : -g.hi)), "e = " << e << " sign " << sign);
+    }
+  }
+}

@@ -121,8 +121,8 @@ inline int sign_of(const Rational& x) { return x < 0 ? -1 : (x > 0 ? 1 : 0); }
 // (delta <= 1/2; never called with delta >= 1/2 when G > 0), the exact sign of G, a certified
 // lower bound `floor` <= G (the depth of a point of X) and guesses [l, u] (each is only tried:
 // it is kept when cmp(l) >= 0 and cmp(u) <= 0). Then bisection (on the binary exponent of |G|
-// while no bracket is known), to a width of 2^-54 of |G|'s binary order, so the double
-// enclosure is at most two adjacent doubles wide.
+// while no bracket is known): from a guess's bracket to a width of 2^-54 of |G|'s binary order,
+// so the double enclosure is at most two adjacent doubles wide; otherwise to 2^-24 of it.
 template <class Cmp>
 MarginEnclosure enclose_margin(const Cmp& cmp, int sign, const Rational& floor,
                                const std::vector<std::pair<Rational, Rational>>& guesses) {
@@ -143,6 +143,7 @@ MarginEnclosure enclose_margin(const Cmp& cmp, int sign, const Rational& floor,
     const int c = cmp(floor);
     if (c == 0) return {floor, floor};
   }
+  bool guessed = false;
   for (const auto& [l, u] : guesses) {
     if (sign_of(l) != sign || sign_of(u) != sign || u < l) continue;
     if (sign > 0 ? (u < a || l > b) : (-l < a || -u > b)) continue;
@@ -156,6 +157,7 @@ MarginEnclosure enclose_margin(const Cmp& cmp, int sign, const Rational& floor,
     // l < G < u: a bracket of a few ulps, narrowed below.
     if (sign > 0) a = l, b = u;
     else a = -u, b = -l;
+    guessed = true;
     break;
   }
   // Bracket |G| between powers of two: 2^elo <= |G| <= 2^ehi.
@@ -186,7 +188,10 @@ MarginEnclosure enclose_margin(const Cmp& cmp, int sign, const Rational& floor,
     (r > 0 ? elo : ehi) = e;
   }
   Rational lo = std::max(a, power_of_two(elo)), hi = std::min(b, power_of_two(ehi));
-  const Rational width = power_of_two(elo - 54);
+  // Narrowed to 2^-54 of |G|'s binary order (two adjacent doubles) when a guess bracketed G
+  // within a few ulps (a few steps); by blind bisection only to 2^-24 (24 steps, not 54: the
+  // study's bins and tables need far less, and each step is an exact comparison).
+  const Rational width = power_of_two(elo - (guessed ? 54 : 24));
   while (hi - lo > width) {
     const Rational m = (lo + hi) / 2;
     const int r = rel(m);
