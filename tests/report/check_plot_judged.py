@@ -26,6 +26,7 @@ Exit status 77 (skipped) when /usr/bin/python3 has no matplotlib.
 import hashlib
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -135,10 +136,11 @@ def check_drawing(study, work, judge_dir, problems):
 
     ps.save = keep
     judged = ps.read_judged([judge_dir])
+    rows = read_csv(os.path.join(study, "instances.csv"))
     summary = read_csv(os.path.join(study, "summary.csv"))
     studied = {r["query"] for r in summary}
-    ps.pareto(summary, work, judged)
-    ps.pareto_compact(summary, work, judged)
+    ps.pareto(rows, summary, work, judged)
+    ps.pareto_compact(rows, summary, work, judged)
     for name in ("pareto", "pareto_compact"):
         fig = kept.get(name)
         if fig is None:
@@ -150,7 +152,7 @@ def check_drawing(study, work, judge_dir, problems):
         titles = {QUERY_TITLES[q]: q for q in QUERY_TITLES}
         seen = set()
         for ax in fig.axes:
-            q = titles.get(ax.get_title())
+            q = titles.get(re.sub(r" \(\d+ paired\)$", "", ax.get_title()))  # the panel counts its paired instances
             if q is None:
                 continue
             seen.add(q)

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Whether two study results folders hold the same CSV files with the same rows, but for the
-# timing columns (instances.csv `ns`, summary.csv `median_ns`: measured, so they differ between
-# any two runs):
+# timing columns (instances.csv `ns`, summary.csv `median_ns`, the timing*.csv percentiles and
+# means: measured, so they differ between any two runs; their counts `n` must agree) and
+# timing_thread.csv (which CPU each shard's timing thread was pinned to: one row per shard, so a
+# merged study has more rows than an unsharded one):
 #   tests/slurm/compare_study.sh REFERENCE OTHER
 # Every *.csv under REFERENCE (instances, inputs, hunt, summary, summary_families, failure maps)
 # must exist under OTHER, and OTHER must have no CSV file that REFERENCE lacks (the shard-*
@@ -11,7 +13,7 @@ set -euo pipefail
 [ $# -eq 2 ] || { echo "usage: compare_study.sh REFERENCE OTHER" >&2; exit 2; }
 reference=$1
 other=$2
-timing_columns="ns median_ns"
+timing_columns="ns median_ns p10_ns p50_ns p90_ns mean_ns max_ns"
 
 # The file without the timing columns, found by name in its header line.
 untimed() {
@@ -25,8 +27,9 @@ untimed() {
     }' "$1"
 }
 
-# The CSV files of a results folder, but not those of the shards a merged folder keeps.
-listing() { (cd "$1" && find . -path './shard-*' -prune -o -name '*.csv' -type f -print | sort); }
+# The CSV files of a results folder, but not those of the shards a merged folder keeps, nor
+# timing_thread.csv.
+listing() { (cd "$1" && find . -path './shard-*' -prune -o -name '*.csv' ! -name timing_thread.csv -type f -print | sort); }
 status=0
 if ! diff <(listing "$reference") <(listing "$other") > /dev/null; then
   echo "compare_study: the CSV files differ (< $reference, > $other):"
