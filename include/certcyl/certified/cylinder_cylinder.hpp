@@ -1625,8 +1625,7 @@ class CylinderCylinderSolver {
       // Y in the open disk, pushed into i by less than both its depth in j and its room in the disk.
       const auto try_point = [&](const HomogeneousPoint<R>& y, const std::optional<long>& depth) {
         if (!depth) return false;
-        const Vec3<R> radial = y.n - y.w * E;
-        const R disk = ci.radius * ci.radius * y.w * y.w - dot(radial, radial);  // w^2 (r_i^2 - |Y - E|^2)
+        const R disk = disk_room(y, E, ci.radius);
         return disk > 0 && stepped_witness(y, n, AAi, std::min(*depth, binade(disk) - 2 * binade(y.w) - ri_binade - 1));
       };
       for (const HomogeneousPoint<R>& y : cap_disk_points(e, i, far_end, rim, input_span_bits())) {

@@ -92,6 +92,14 @@ std::optional<long> depth_binade(const HomogeneousPoint<R>& Y, const Cylinder<R>
   return std::min(binade(std::min(u, rest)) - bw - binade(AA) / 2, binade(tube) - 2 * bw - binade(AA) - binade(c.radius) - 1);
 }
 
+// w^2 (r^2 - |Y - E|^2) for Y = n / w: positive iff Y is in the open disk of radius r about E
+// (in its plane), and w^2 times Y's room in it.
+template <class R>
+R disk_room(const HomogeneousPoint<R>& Y, const Point3<R>& E, const R& r) {
+  const Vec3<R> radial = Y.n - Y.w * E;
+  return r * r * Y.w * Y.w - dot(radial, radial);
+}
+
 // max_k |v_k|.
 template <class R>
 R largest_coordinate(const Vec3<R>& v) {
@@ -111,8 +119,7 @@ R largest_coordinate(const Vec3<R>& v) {
 template <class R>
 std::optional<HomogeneousPoint<R>> cap_disk_toward_axis(const HomogeneousPoint<R>& Y, const Point3<R>& E, const R& ri, const Vec3<R>& Ai,
                                                         const R& AAi, const Cylinder<R>& cj, const Vec3<R>& Aj, const R& AAj) {
-  const Vec3<R> radial = Y.n - Y.w * E;
-  const R room = ri * ri * Y.w * Y.w - dot(radial, radial);  // w^2 (r_i^2 - |Y - E|^2)
+  const R room = disk_room(Y, E, ri);
   if (!(room > 0)) return std::nullopt;
   const Vec3<R> V = Y.n - Y.w * cj.p0;
   const Vec3<R> Q = AAj * V - dot(V, Aj) * Aj;
