@@ -253,6 +253,33 @@ BOOST_AUTO_TEST_CASE(needle_above_a_disc_thinner_than_the_double_range_is_decide
   }
 }
 
+// A needle a of length about 2^701 and radius 2^-700 passing beside a short fat cylinder b
+// (0 <= x <= 4, y^2 + z^2 <= 64): a's axis is x = 5 + 4y/L, z = 3 (L = 2^700), so at |y| <= 8,
+// where b lies, it runs at x >= 5 - 32/L. D = (L, -4, 0) separates them by construction: D.X / L
+// = x - 4y/L is 5 on a's axis (within 2^-699 on a) and at most 4 + 32/L on b. D is the part of
+// b's axis orthogonal to a's; T, its parts orthogonal to the axes, the axes, A0 x A1 and the
+// difference of the axes' closest points do not separate. The pattern of the slowest of 3,000
+// random wide pairs (fuzz input format): before the exact candidates included the part of each
+// axis orthogonal to the other, the ellipsoid stage's direction runs decided them (some 10 ms).
+BOOST_AUTO_TEST_CASE(needle_beside_a_fat_cylinder_is_separated_by_an_axis_part_orthogonal_to_the_other) {
+  const double L = 0x1p700;
+  const certcyl::Cylinder<double> a{{9, L, 3}, {1, -L, 3}, 0x1p-700};
+  const certcyl::Cylinder<double> b{{0, 0, 0}, {4, 0, 0}, 8};
+  const auto to_q = [](double x) { return Q(x); };
+  const Cylinder<Q> qa = a.map(to_q), qb = b.map(to_q);
+  BOOST_REQUIRE(certcyl::detail::separation_sign(certcyl::detail::CylinderPair<Q>::make(qa, qb), certcyl::Vec3<Q>{Q(L), Q(-4), Q(0)}) ==
+                CGAL::POSITIVE);
+  for (const bool swap : {false, true}) {
+    const auto r = swap ? certcyl::certified_cylinder_cylinder(b, a) : certcyl::certified_cylinder_cylinder(a, b);
+    BOOST_TEST_CONTEXT((swap ? "swapped: " : "") << "stage " << to_string(r.stage)) {
+      BOOST_TEST(r.answer == Answer::separated);
+      BOOST_TEST(certcyl::recheck::check_cylinder_pair(swap ? qb : qa, swap ? qa : qb, r) == "");
+      BOOST_TEST(r.gmpfr_precision == 0);
+      BOOST_TEST(r.ellipsoid_precision == 0);
+    }
+  }
+}
+
 // Found by the pair fuzz harness (15 s and 6.5 s per query before): two overlapping pairs whose
 // common interior is a sliver around a point of the larger cylinder's rim or cap, far too thin
 // for the Gmpfr rounds below 8,192 bits.

@@ -62,9 +62,10 @@
 //                    prove_touching when there is no ring frame: rational input whose
 //                    denominators' lcm exceeds 4,096 bits).
 //   gmpfr            exact candidates first (directions: T, its parts orthogonal to the axes, the
-//                    axes and their cross product; witnesses: the midpoints, the closest points
-//                    of the axes, points of an end disc of one cylinder whose end lies in the
-//                    other, an end's step along its axis sized from its depth in the other,
+//                    axes, their cross product and each one's part orthogonal to the other;
+//                    witnesses: the midpoints, the closest points of the axes, points of an
+//                    end disc of one cylinder whose end lies in the other, an end's step along
+//                    its axis sized from its depth in the other,
 //                    points of one tube beside its axis's closest point, points of the line
 //                    where the slabs' mid-planes meet, and points of a cap disk inside the other
 //                    pushed into the cylinder, among them the rim points nearest the other's
@@ -1300,14 +1301,15 @@ class CylinderCylinderSolver {
 
   // Exact candidates, before any Gmpfr round: the midpoints m0, m1 as witnesses (each is interior
   // to its own cylinder; in double they may be rounded off a needle's axis), and the directions
-  // T, its parts orthogonal to each axis, A0, A1 and A0 x A1; then the exact closest points c0,
-  // c1 of the axis segments: their r0:r1 division point and midpoint as witnesses and c1 - c0 as
-  // a direction. These decide every pair whose contact is between the walls away from the caps
-  // at any distance from touching: with c0, c1 interior to the axis segments and
-  // d = |c1 - c0|, the r0:r1 point is at distance r0 d / (r0 + r1) < r0 from axis 0 and
-  // r1 d / (r0 + r1) < r1 from axis 1 when d < r0 + r1, and c1 - c0, orthogonal to both axes,
-  // separates when d > r0 + r1. In the ring frame when the pair has one (Mpzf, in homogeneous
-  // coordinates: no division, no gcd), else on the input in Gmpq.
+  // T, its parts orthogonal to each axis, A0, A1, A0 x A1 and the part of each axis orthogonal to
+  // the other; then the exact closest points c0, c1 of the axis segments: their r0:r1 division
+  // point and midpoint as witnesses and c1 - c0 as a direction. These decide every pair whose
+  // contact is between the walls away from the caps at any distance from touching: with c0, c1
+  // interior to the axis segments and d = |c1 - c0|, the r0:r1 point is at distance
+  // r0 d / (r0 + r1) < r0 from axis 0 and r1 d / (r0 + r1) < r1 from axis 1 when d < r0 + r1,
+  // and c1 - c0, orthogonal to both axes, separates when d > r0 + r1. In the ring frame when the
+  // pair has one (Mpzf, in homogeneous coordinates: no division, no gcd), else on the input in
+  // Gmpq.
   bool exact_candidates() {
     if (exact_candidates_tried_) return false;
     exact_candidates_tried_ = true;
@@ -1321,6 +1323,12 @@ class CylinderCylinderSolver {
   bool exact_candidates(const CylinderPair<R>& e) {
     if (!is_zero_vector(e.T) && exact_separates(e.T)) return true;
     for (const Vec3<R>& D : structural_directions(e))
+      if (!is_zero_vector(D) && exact_separates(D)) return true;
+    // The part of each axis orthogonal to the other: with A0 x A1, the part of A1 spans the plane
+    // orthogonal to A0, near which every separating direction lies when A0 is long beside the
+    // gap (|D.A0| / 2 <= phi(D) < D.Delta); likewise with the indices exchanged.
+    const R b = dot(e.A0, e.A1);
+    for (const Vec3<R>& D : {e.AA0 * e.A1 - b * e.A0, e.AA1 * e.A0 - b * e.A1})
       if (!is_zero_vector(D) && exact_separates(D)) return true;
     const R two(2);
     for (const Cylinder<R>* c : {&e.c0, &e.c1})
