@@ -585,6 +585,37 @@ BOOST_AUTO_TEST_CASE(rounded_ellipsoid_runs_reach_certificates) {
   }
 }
 
+// A run asks its stop predicate before each step (the query passes its time limit there): a
+// predicate that says stop before the k-th step ends the run unfinished after k - 1 steps, with
+// the oracle asked k - 1 times. The pair is separated (the first base contact moved off
+// touching, side 1), so no centre is an interior point and the run would go on to its 64 steps.
+BOOST_AUTO_TEST_CASE(an_ellipsoid_run_stops_before_the_step_its_predicate_refuses) {
+  using namespace certcyl::detail;
+  const auto [a, b] = moved_pair(base_touching_cases().front(), 1);
+  const CylinderPair<Q> e = CylinderPair<Q>::make(a, b);
+  const IntegerPair z(e);
+  const PointProblem points(z, false);
+  for (const long k : {1L, 2L, 5L}) {
+    long asked = 0, oracle_calls = 0;
+    std::uint32_t steps = 0;
+    const bool found = run_ellipsoid<3>(
+        EllipsoidMode::fast, 128, 64, steps,
+        [&](const DyadicVector<3>& y, long bits) -> std::optional<EllipsoidCut<3>> {
+          ++oracle_calls;
+          std::optional<EllipsoidCut<3>> cut = points.cut(y, bits);
+          BOOST_REQUIRE(cut);  // separated: no centre is interior to both
+          return cut;
+        },
+        nullptr, 0, [&] { return ++asked == k; });
+    BOOST_TEST_CONTEXT("stop before step " << k) {
+      BOOST_TEST(!found);
+      BOOST_TEST(asked == k);
+      BOOST_TEST(oracle_calls == k - 1);
+      BOOST_TEST(steps == static_cast<std::uint32_t>(k - 1));
+    }
+  }
+}
+
 // Slivers that the exact candidates decide before the corner candidates, the touching proofs and
 // the ellipsoid stage. b is a slab 2^40 deep below the plane z = 0, radius 2^900.
 //   End in: a needle (radius 1/2, 2^125 long, tilted) whose end centre lies 2^-k below z = 0,

@@ -203,8 +203,8 @@ struct CylinderCylinderOptions {
   // much wall time has passed, the query stops at its next check and answers undecided, with
   // time_limit_reached set. The checks come before each stage after the optimiser, before each
   // group of exact candidates (the witnesses beside the ends, each cylinder's cap-disk points),
-  // corner plane, Gmpfr round and ellipsoid run; a check never interrupts an exact evaluation,
-  // a Gmpfr round or an ellipsoid run, so the query can overrun the limit by the longest of
+  // corner plane, Gmpfr round and ellipsoid step; a check never interrupts an exact evaluation,
+  // a Gmpfr round or an ellipsoid step, so the query can overrun the limit by the longest of
   // these (on input of thousands of digits, a second or more). A limit above 10^9 s is taken as
   // 10^9 s, and NaN as none. The study and the command's default never set it.
   double time_limit_seconds = 0;
@@ -1939,7 +1939,7 @@ class CylinderCylinderSolver {
                               if (exact_overlaps(std::move(X))) return std::nullopt;
                               return EllipsoidCut<3>{};  // not reached (cut() checked the same constraints): ends the run
                             },
-                            start, j);
+                            start, j, [this] { return out_of_time(); });
   }
 
   // Rounded runs refine the minorant until it cuts the centre off by more than 2^(-p/4) below
@@ -1964,7 +1964,7 @@ class CylinderCylinderSolver {
                                 if (cuts_off) return k;
                               }
                             },
-                            start, j);
+                            start, j, [this] { return out_of_time(); });
   }
 
   const CylinderPair<CGAL::Gmpz>& integer_pair() {

@@ -229,14 +229,21 @@ class EllipsoidRun {
   std::array<Vec, n> A_;
 };
 
+// Never asks a run to stop.
+struct NeverStop {
+  bool operator()() const { return false; }
+};
+
 // Runs the ellipsoid for at most `steps` steps: `oracle(y, bits)` checks the centre y exactly
 // and returns nullopt when it is a certificate (the run ends: true), else a cut; `bits` is the
-// run's working precision. `steps` counts the steps taken.
-template <int n, class Oracle>
+// run's working precision. `steps` counts the steps taken. `stop()` is asked before each step;
+// true ends the run unfinished (false), so a caller's time limit is checked once a step.
+template <int n, class Oracle, class Stop = NeverStop>
 bool run_ellipsoid(EllipsoidMode mode, long p, long max_steps, std::uint32_t& steps, Oracle&& oracle,
-                   const std::array<Rational, n>* start = nullptr, long j = 0) {
+                   const std::array<Rational, n>* start = nullptr, long j = 0, Stop&& stop = Stop{}) {
   EllipsoidRun<n> e(mode, p, start, j);
   for (long s = 0; s < max_steps; ++s) {
+    if (stop()) return false;
     ++steps;
     const std::optional<EllipsoidCut<n>> k = oracle(e.centre(), e.bits());
     if (!k) return true;
