@@ -616,6 +616,24 @@ BOOST_AUTO_TEST_CASE(an_ellipsoid_run_stops_before_the_step_its_predicate_refuse
   }
 }
 
+// The optimiser asks its stop predicate before each Newton step (the Gmpfr rounds pass the
+// query's time limit there): stopped before the k-th step, it returns after k - 1 steps.
+BOOST_AUTO_TEST_CASE(the_optimiser_stops_before_the_newton_step_its_predicate_refuses) {
+  using namespace certcyl::detail;
+  const certcyl::Cylinder<double> a{{0, 0, 0}, {0, 0, 4}, 1}, b{{-2, 2.25, 1}, {2, 2.25, 3}, 1.25};
+  const CylinderPair<double> d = CylinderPair<double>::make(a, b);
+  const PlaneMinimum<double> full = PlaneProblem<double>(d, 44).minimise(true, 30);
+  BOOST_REQUIRE(full.iterations >= 4);
+  for (const int k : {1, 2, 4}) {
+    int asked = 0;
+    const PlaneMinimum<double> m = PlaneProblem<double>(d, 44).minimise(true, 30, [&] { return ++asked == k; });
+    BOOST_TEST_CONTEXT("stop before step " << k) {
+      BOOST_TEST(asked == k);
+      BOOST_TEST(m.iterations == k - 1);
+    }
+  }
+}
+
 // Slivers that the exact candidates decide before the corner candidates, the touching proofs and
 // the ellipsoid stage. b is a slab 2^40 deep below the plane z = 0, radius 2^900.
 //   End in: a needle (radius 1/2, 2^125 long, tilted) whose end centre lies 2^-k below z = 0,

@@ -203,8 +203,8 @@ struct CylinderCylinderOptions {
   // much wall time has passed, the query stops at its next check and answers undecided, with
   // time_limit_reached set. The checks come before each stage after the optimiser, before each
   // group of exact candidates (the witnesses beside the ends, each cylinder's cap-disk points),
-  // corner plane, Gmpfr round and ellipsoid step; a check never interrupts an exact evaluation,
-  // a Gmpfr round or an ellipsoid step, so the query can overrun the limit by the longest of
+  // corner plane, Newton step of a Gmpfr round and ellipsoid step; a check never interrupts an
+  // exact evaluation or one such step, so the query can overrun the limit by the longest of
   // these (on input of thousands of digits, a second or more). A limit above 10^9 s is taken as
   // 10^9 s, and NaN as none. The study and the command's default never set it.
   double time_limit_seconds = 0;
@@ -1833,8 +1833,9 @@ class CylinderCylinderSolver {
       const auto to_f = [](const Rational& q) { return nt::from_rational<CGAL::Gmpfr>(q); };
       const CylinderPair<CGAL::Gmpfr> g = CylinderPair<CGAL::Gmpfr>::make(exact_cylinder(0).map(to_f), exact_cylinder(1).map(to_f));
       PlaneProblem<CGAL::Gmpfr> problem(g, static_cast<int>(precision * 4 / 5));
-      const PlaneMinimum<CGAL::Gmpfr> m = problem.minimise(true, static_cast<int>(precision * 3 / 5));
+      const PlaneMinimum<CGAL::Gmpfr> m = problem.minimise(true, static_cast<int>(precision * 3 / 5), [this] { return out_of_time(); });
       result_.counters.newton_steps += static_cast<std::uint32_t>(m.iterations);
+      if (out_of_time()) return false;
       D = m.direction.map([](const CGAL::Gmpfr& x) { return to_rational(x); });
       X = m.point.map([](const CGAL::Gmpfr& x) { return to_rational(x); });
     }

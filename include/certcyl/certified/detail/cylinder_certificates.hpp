@@ -81,6 +81,12 @@ NT squared_norm(const Vec3<NT>& v) {
 }
 
 // The quantities every check needs, in one number type.
+// A stop predicate that never asks an iteration (an ellipsoid run, the optimiser's Newton
+// steps) to stop; the query passes its time-limit check instead.
+struct NeverStop {
+  bool operator()() const { return false; }
+};
+
 template <class NT>
 struct CylinderPair {
   Cylinder<NT> c0, c1;

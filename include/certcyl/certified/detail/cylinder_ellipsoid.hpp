@@ -229,11 +229,6 @@ class EllipsoidRun {
   std::array<Vec, n> A_;
 };
 
-// Never asks a run to stop.
-struct NeverStop {
-  bool operator()() const { return false; }
-};
-
 // Runs the ellipsoid for at most `steps` steps: `oracle(y, bits)` checks the centre y exactly
 // and returns nullopt when it is a certificate (the run ends: true), else a cut; `bits` is the
 // run's working precision. `steps` counts the steps taken. `stop()` is asked before each step;

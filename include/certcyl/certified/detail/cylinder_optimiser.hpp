@@ -84,7 +84,9 @@ class PlaneProblem {
   // separating direction in sight) or the dual point's scale sigma(X) does (an interior point
   // in sight). Both are measured at the returned D and X, not inferred from the smoothed problem
   // (the dual value lambda is only a bound once the level has converged).
-  PlaneMinimum<NT> minimise(bool stop_early, int stop_exponent) {
+  // stop() is asked before each Newton step; true returns the current iterate at once.
+  template <class Stop = NeverStop>
+  PlaneMinimum<NT> minimise(bool stop_early, int stop_exponent, Stop&& stop = Stop{}) {
     const NT zero = nt::constant<NT>(0), one = nt::constant<NT>(1);
     NT margin = one;
     for (int i = 0; i < stop_exponent; ++i) margin = margin / nt::constant<NT>(2);
@@ -96,6 +98,11 @@ class PlaneProblem {
       const NT mu2 = mu * mu;
       const NT tolerance = last ? NT(mu_final_ * margin) : NT(mu / nt::constant<NT>(16));
       for (int it = 0; it < 60; ++it) {
+        if (stop()) {
+          PlaneMinimum<NT> m = result(u, v, mu2);
+          m.iterations = iterations;
+          return m;
+        }
         Local l = local(u, v, mu2);
         // Newton step: H s = -g, with H symmetric positive definite (2 x 2, by Cramer's rule).
         const NT det = l.h00 * l.h11 - l.h01 * l.h01;
