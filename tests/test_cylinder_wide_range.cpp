@@ -229,6 +229,25 @@ BOOST_AUTO_TEST_CASE(pancake_on_a_rim_wall_and_cap_edge_is_overlapping) {
   }
 }
 
+// A pair separated by construction: D is checked to separate them exactly, then the query in
+// both orders must answer separated with a certificate the independent re-check accepts, and
+// satisfy `more` (what the test is about: the stage, the precisions).
+template <class More>
+void check_separated_in_both_orders(const certcyl::Cylinder<double>& a, const certcyl::Cylinder<double>& b, const certcyl::Vec3<Q>& D,
+                                    More&& more) {
+  const auto to_q = [](double x) { return Q(x); };
+  const Cylinder<Q> qa = a.map(to_q), qb = b.map(to_q);
+  BOOST_REQUIRE(certcyl::detail::separation_sign(certcyl::detail::CylinderPair<Q>::make(qa, qb), D) == CGAL::POSITIVE);
+  for (const bool swap : {false, true}) {
+    const auto r = swap ? certcyl::certified_cylinder_cylinder(b, a) : certcyl::certified_cylinder_cylinder(a, b);
+    BOOST_TEST_CONTEXT((swap ? "swapped: " : "") << "stage " << to_string(r.stage)) {
+      BOOST_TEST(r.answer == Answer::separated);
+      BOOST_TEST(certcyl::recheck::check_cylinder_pair(swap ? qb : qa, swap ? qa : qb, r) == "");
+      more(r);
+    }
+  }
+}
+
 // Found by the pair fuzz harness: a needle a of radius about 2^-45 from (0, 0, 99) to
 // (2, 22.5, 0.703125), and a disc b of radius 2.75 about (0, 0, 90), 2^-1008 thick along x.
 // D = (50, 0, 1) separates them by construction: D.X <= 92.75 on b (x <= 0, z <= 92.75) and
@@ -239,18 +258,9 @@ BOOST_AUTO_TEST_CASE(pancake_on_a_rim_wall_and_cap_edge_is_overlapping) {
 BOOST_AUTO_TEST_CASE(needle_above_a_disc_thinner_than_the_double_range_is_decided_in_double) {
   const certcyl::Cylinder<double> a{{0, 0, 0x1.8cp+6}, {2, 0x1.68p+4, 0x1.68p-1}, 0x1.7d580d90001p-45};
   const certcyl::Cylinder<double> b{{0, 0, 0x1.68p+6}, {-0x1.fffffff2d01p-1008, 0, 0x1.68p+6}, 0x1.6p+1};
-  const auto to_q = [](double x) { return Q(x); };
-  const Cylinder<Q> qa = a.map(to_q), qb = b.map(to_q);
-  BOOST_REQUIRE(certcyl::detail::separation_sign(certcyl::detail::CylinderPair<Q>::make(qa, qb), certcyl::Vec3<Q>{Q(50), Q(0), Q(1)}) ==
-                CGAL::POSITIVE);
-  for (const bool swap : {false, true}) {
-    const auto r = swap ? certcyl::certified_cylinder_cylinder(b, a) : certcyl::certified_cylinder_cylinder(a, b);
-    BOOST_TEST_CONTEXT((swap ? "swapped: " : "") << "stage " << to_string(r.stage)) {
-      BOOST_TEST(r.answer == Answer::separated);
-      BOOST_TEST(certcyl::recheck::check_cylinder_pair(swap ? qb : qa, swap ? qa : qb, r) == "");
-      BOOST_TEST((r.stage == certcyl::CylinderStage::optimiser || r.stage == certcyl::CylinderStage::refine));
-    }
-  }
+  check_separated_in_both_orders(a, b, {Q(50), Q(0), Q(1)}, [](const certcyl::CylinderCylinderResult& r) {
+    BOOST_TEST((r.stage == certcyl::CylinderStage::optimiser || r.stage == certcyl::CylinderStage::refine));
+  });
 }
 
 // A needle a of length about 2^701 and radius 2^-700 passing beside a short fat cylinder b
@@ -265,19 +275,10 @@ BOOST_AUTO_TEST_CASE(needle_beside_a_fat_cylinder_is_separated_by_an_axis_part_o
   const double L = 0x1p700;
   const certcyl::Cylinder<double> a{{9, L, 3}, {1, -L, 3}, 0x1p-700};
   const certcyl::Cylinder<double> b{{0, 0, 0}, {4, 0, 0}, 8};
-  const auto to_q = [](double x) { return Q(x); };
-  const Cylinder<Q> qa = a.map(to_q), qb = b.map(to_q);
-  BOOST_REQUIRE(certcyl::detail::separation_sign(certcyl::detail::CylinderPair<Q>::make(qa, qb), certcyl::Vec3<Q>{Q(L), Q(-4), Q(0)}) ==
-                CGAL::POSITIVE);
-  for (const bool swap : {false, true}) {
-    const auto r = swap ? certcyl::certified_cylinder_cylinder(b, a) : certcyl::certified_cylinder_cylinder(a, b);
-    BOOST_TEST_CONTEXT((swap ? "swapped: " : "") << "stage " << to_string(r.stage)) {
-      BOOST_TEST(r.answer == Answer::separated);
-      BOOST_TEST(certcyl::recheck::check_cylinder_pair(swap ? qb : qa, swap ? qa : qb, r) == "");
-      BOOST_TEST(r.gmpfr_precision == 0);
-      BOOST_TEST(r.ellipsoid_precision == 0);
-    }
-  }
+  check_separated_in_both_orders(a, b, {Q(L), Q(-4), Q(0)}, [](const certcyl::CylinderCylinderResult& r) {
+    BOOST_TEST(r.gmpfr_precision == 0);
+    BOOST_TEST(r.ellipsoid_precision == 0);
+  });
 }
 
 // Found by the pair fuzz harness (15 s and 6.5 s per query before): two overlapping pairs whose
