@@ -80,13 +80,13 @@ NT squared_norm(const Vec3<NT>& v) {
   return squared(v.x) + squared(v.y) + squared(v.z);
 }
 
-// The quantities every check needs, in one number type.
 // A stop predicate that never asks an iteration (an ellipsoid run, the optimiser's Newton
 // steps) to stop; the query passes its time-limit check instead.
 struct NeverStop {
   bool operator()() const { return false; }
 };
 
+// The quantities every check needs, in one number type.
 template <class NT>
 struct CylinderPair {
   Cylinder<NT> c0, c1;
