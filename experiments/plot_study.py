@@ -687,9 +687,10 @@ def t_error(rows, out):
          rect=(0, 0.05, 1, 1))
 
 
-CODES = "stoiue"
-CODE_COLOURS = ["#4c72b0", "#f2c14e", "#dd8452", "#c44e52", "#bbbbbb", "#000000"]
-CODE_NAMES = ["separated", "touching", "overlapping", "intersecting", "undecided", "error"]
+CODES = "stoiuecx"
+CODE_COLOURS = ["#4c72b0", "#f2c14e", "#dd8452", "#c44e52", "#bbbbbb", "#000000", "#8fbf8f", "#2f6f2f"]
+CODE_NAMES = ["separated", "touching", "overlapping", "intersecting", "undecided", "error", "as its contract (differs from solid)",
+              "not as its contract"]
 # A wrong cell is drawn opaque in this one colour, whatever the method answered there.
 WRONG_COLOUR = "#ff00ff"
 WRONG_LABEL = "wrong: meets where the certified answer is separated, or the reverse"
@@ -730,12 +731,15 @@ def wrong_counts(sub, sub_cert, evaluated):
     is overlapping, or the reverse; a Boolean method's `intersecting` is none) among the
     evaluated cells, undecided and error cells aside: three boolean masks."""
     meets_code = np.array([meets(c) for c in CODES])
-    decided = evaluated & (sub != CODES.index("u")) & (sub != CODES.index("e"))
+    # A cell answered as the method's contract says where it differs from the solid answer ("c")
+    # is not wrong; one answered against it there ("x") is a false positive under the contract.
+    contract, against = sub == CODES.index("c"), sub == CODES.index("x")
+    decided = evaluated & (sub != CODES.index("u")) & (sub != CODES.index("e")) & ~contract
     m = meets_code[np.clip(sub, 0, None)]
     c = meets_code[np.clip(sub_cert, 0, None)]
     t, o = CODES.index("t"), CODES.index("o")
     cls = decided & (((sub == t) & (sub_cert == o)) | ((sub == o) & (sub_cert == t)))
-    return decided & m & ~c, decided & ~m & c, cls
+    return (decided & m & ~c) | (decided & against), decided & ~m & c & ~against, cls
 
 
 def failure_maps(folder, out):

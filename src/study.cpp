@@ -61,6 +61,7 @@ int run_study(StudyOptions o, std::ostream& out) {
   register_cylinder_methods(registry);
   const std::vector<std::string> peers = register_peer_methods(registry);
   mark_serial(registry);
+  attach_conversions(registry);
   std::vector<std::string> method_names;
   for (const Method& m : registry) method_names.push_back(m.name());
   configure_study(o, method_names);

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "fd_io.hpp"
+#include "study/contract.hpp"
 #include "study/families.hpp"
 #include "study/gap.hpp"
 #include "study_internal.hpp"
@@ -84,78 +85,133 @@ std::string hunt_in_child(const Method& m, const std::function<std::string(const
 
 std::string hunt_worst(const std::string& name, Query query, std::uint64_t seed, long budget,
                        const std::function<MethodOutput(const std::vector<double>&)>& run,
-                       const std::function<void(const std::string&)>& trace) {
+                       const std::function<void(const std::string&)>& trace, Contract contract) {
   const auto families = all_families();
-  std::vector<const Family*> starts;
-  for (const Family& f : families)
-    if (std::find(f.queries.begin(), f.queries.end(), query) != f.queries.end() && f.name != "uniform") starts.push_back(&f);
+  std::vector<const Family*> starts, samples;
+  for (const Family& f : families) {
+    if (std::find(f.queries.begin(), f.queries.end(), query) == f.queries.end()) continue;
+    samples.push_back(&f);
+    if (f.name != "uniform") starts.push_back(&f);
+  }
+  const Family* uniform = nullptr;
+  for (const Family* f : samples)
+    if (f->name == "uniform") uniform = f;
   Rng rng(mix(seed, hash_string(name + std::string(to_string(query)))));
-  const long restarts = std::max(1L, budget / 50);
   long evaluations = 0;
-  double best_score = -std::numeric_limits<double>::infinity();
+  const double none = -std::numeric_limits<double>::infinity();
+  double best_score = none;
   Instance best;
   MethodOutput best_out;
   std::string best_family;
   auto score = [&](Instance& inst, MethodOutput& out) {
     ++evaluations;
     certify(inst);
-    if (inst.certified == Answer::undecided) return -std::numeric_limits<double>::infinity();
+    if (inst.certified == Answer::undecided) return none;
     if (trace) trace("X " + x_hex(inst.x));
     out = run(inst.x);
-    if (!disagrees(judge(out, inst.certified))) return -std::numeric_limits<double>::infinity();
+    if (!disagrees(judge(out, certified_under(inst, contract)))) return none;
     // The certified lower bound of |gap| (0 when the enclosure contains 0).
     const double g = inst.gap_lo > 0 ? inst.gap_lo : (inst.gap_hi < 0 ? -inst.gap_hi : 0.0);
     return g > 0 ? std::log(g) : -1e300;
   };
-  for (long r = 0; r < restarts && evaluations < budget; ++r) {
-    const Family* f = starts[static_cast<std::size_t>(rng.integer(0, static_cast<long long>(starts.size()) - 1))];
-    Instance cur;
-    cur.query = query;
-    cur.x = f->make(rng, query, 0).x;
+  auto keep = [&](const Instance& inst, const MethodOutput& out, double sc, const std::string& family) {
+    if (sc > best_score) best_score = sc, best = inst, best_out = out, best_family = family;
+  };
+
+  // Phase 1, sampling: a quarter of the budget on independent inputs, every other one from the
+  // uniform family (generic input, far from every degeneracy: where a method wrong on a share of
+  // typical inputs is found) and the others from a random family at a random displacement k.
+  const long sampled = budget >= 4 ? budget / 4 : 0;
+  for (long i = 0; i < sampled; ++i) {
+    const Family* f = uniform && (i % 2 == 0 || starts.empty())
+                          ? uniform
+                          : samples[static_cast<std::size_t>(rng.integer(0, static_cast<long long>(samples.size()) - 1))];
+    Instance inst;
+    inst.query = query;
+    inst.x = f->make(rng, query, ulp_offset(rng, static_cast<std::size_t>(rng.integer(1, 7)))).x;
     if (trace) trace("F " + f->name);
+    MethodOutput out;
+    keep(inst, out, score(inst, out), f->name);
+  }
+
+  // Phase 2, local searches: restarts at the degenerate configurations of the query's families
+  // (k = 0) and, once a wrong answer is known, every other restart from the best one so far; each
+  // climbs by moves of one coordinate that keep the method wrong and raise the score.
+  const long remaining = budget - evaluations;
+  const long restarts = std::max(1L, remaining / 50);
+  for (long r = 0; r < restarts && evaluations < budget; ++r) {
+    const bool from_best = best_score > none && (r % 2 == 1 || starts.empty());
+    Instance cur;
+    MethodOutput cur_out;
+    double cur_score = none;
+    std::string family;
+    if (from_best) {
+      cur = best, cur_out = best_out, cur_score = best_score, family = best_family;
+      if (trace) trace("F " + family);
+    } else {
+      const Family* f = starts.empty() ? samples.front()
+                                       : starts[static_cast<std::size_t>(rng.integer(0, static_cast<long long>(starts.size()) - 1))];
+      family = f->name;
+      cur.query = query;
+      cur.x = f->make(rng, query, 0).x;
+      if (trace) trace("F " + family);
+      cur_score = score(cur, cur_out);
+    }
     const std::vector<double> start = cur.x;
     double scale = 0;
     for (double v : start) scale = std::max(scale, std::fabs(v));
-    MethodOutput cur_out;
-    double cur_score = score(cur, cur_out);
-    const long steps = budget / restarts;
-    for (long s = 0; s < steps && evaluations < budget; ++s) {
+    // Stay near the restart's input (each coordinate within `reach` of its start, relative to
+    // the input's scale): the search asks how far from the degeneracy a method stays wrong, not
+    // where double overflows. From a wrong input already found the reach is wider, 1/4.
+    const double reach = from_best ? 0.25 : 0x1p-6;
+    const long steps = remaining / restarts;
+    for (long st = 0; st < steps && evaluations < budget; ++st) {
       Instance next = cur;
       const std::size_t c = static_cast<std::size_t>(rng.integer(0, static_cast<long long>(next.x.size()) - 1));
-      const long long e = rng.integer(0, 44);
-      const long long step = (1LL << e) * (rng.coin() ? 1 : -1);
-      next.x[c] = ulp_step(next.x[c], step);
-      // Stay near the restart's configuration (each coordinate within 2^-6 of its start,
-      // relative to the input's scale): the search asks how far from the degeneracy a method
-      // stays wrong, not where double overflows.
-      if (std::fabs(next.x[c] - start[c]) > 0x1p-6 * scale) continue;
+      bool long_step = false;  // an ulp step of more than 2^20 ulps
+      if (from_best && rng.coin()) {
+        // A relative move: by up to 2^-e of the input's scale, e in [2, 24].
+        const int e = static_cast<int>(rng.integer(2, 24));
+        next.x[c] += std::ldexp(scale, -e) * rng.uniform(-1, 1);
+      } else {
+        const long long e = rng.integer(0, 44);
+        const long long step = (1LL << e) * (rng.coin() ? 1 : -1);
+        next.x[c] = ulp_step(next.x[c], step);
+        long_step = e > 20;
+      }
+      if (!std::isfinite(next.x[c]) || std::fabs(next.x[c] - start[c]) > reach * scale) continue;
       MethodOutput next_out;
       const double sc = score(next, next_out);
       // Before a first failure, wander; afterwards, only climb.
-      if (sc >= cur_score || cur_score == -std::numeric_limits<double>::infinity()) {
-        if (sc == -std::numeric_limits<double>::infinity() && cur_score == -std::numeric_limits<double>::infinity() && e > 20) continue;
+      if (sc >= cur_score || cur_score == none) {
+        if (sc == none && cur_score == none && long_step) continue;
         cur = std::move(next), cur_out = next_out, cur_score = sc;
       }
-      if (cur_score > best_score) best_score = cur_score, best = cur, best_out = cur_out, best_family = f->name;
+      keep(cur, cur_out, cur_score, family);
     }
-    if (cur_score > best_score) best_score = cur_score, best = cur, best_out = cur_out, best_family = f->name;
+    keep(cur, cur_out, cur_score, family);
   }
   std::ostringstream line;
-  const bool found = best_score > -std::numeric_limits<double>::infinity();
+  const bool found = best_score > none;
   line << csv_field(name) << ',' << to_string(query) << ',' << (found ? best_family : "") << ',' << evaluations << ',' << (found ? 1 : 0);
-  if (found)
-    line << ',' << answer_label(best_out) << ',' << to_string(best.certified) << ',' << to_string(judge(best_out, best.certified))
-         << ',' << num(best.gap_lo) << ',' << num(best.gap_hi) << ',' << x_hex(best.x);
-  else
+  if (found) {
+    const Answer under = certified_under(best, contract);
+    line << ',' << answer_label(best_out) << ',' << to_string(under) << ',' << to_string(judge(best_out, under)) << ','
+         << num(best.gap_lo) << ',' << num(best.gap_hi) << ',' << x_hex(best.x);
+  } else {
     line << ",,,,,,";
+  }
   return line.str();
 }
 
-// For each method: random restarts at the degenerate configurations of its query's families
-// (k = 0), then a local search over ulp perturbations of single coordinates (each coordinate
-// kept within 2^-6 of its start, relative to the largest input coordinate) that keeps the
-// method wrong (false positive or false negative) while pushing the certified lower bound of
-// |gap| up. The result is the wrong answer farthest from any degeneracy that the search found.
+// For each method (hunt_worst): a quarter of the evaluations on independent inputs, half of them
+// uniform random ones and half from the query's families at random displacements; then random
+// restarts at the degenerate configurations of its query's families (k = 0), alternating, once
+// a wrong answer is known, with restarts from the best one; each a local search over ulp
+// perturbations of single coordinates (and, from a wrong input found, relative moves) that keeps
+// the method wrong (false positive or false negative, under its contract) while pushing the
+// certified lower bound of |gap| up. The result is the wrong answer farthest from any degeneracy
+// that the search found.
 // Every method but the certified one is hunted; a slow one gets 1/hunt_divisor of the budget.
 void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& dir) {
   std::vector<const Method*> methods;
@@ -171,7 +227,8 @@ void run_hunt(const StudyOptions& o, const Registry& registry, const fs::path& d
     const Method& m = *methods[mi];
     const long query_budget = m.query == Query::cylinder_cylinder ? std::max(1L, o.hunt_evaluations / 4) : o.hunt_evaluations;
     const long budget = std::max(1L, query_budget / static_cast<long>(std::max(1u, m.effort.hunt_divisor)));
-    lines[mi] = hunt_worst(m.name(), m.query, o.seed, budget, [&m](const std::vector<double>& x) { return run_quiet(m, x); }, trace);
+    lines[mi] = hunt_worst(m.name(), m.query, o.seed, budget, [&m](const std::vector<double>& x) { return run_quiet(m, x); }, trace,
+                           m.contract);
   };
   // The parallel methods on the threads, then the serial ones on this thread only, each in a
   // child process: CORE::Expr ends the process (abort, or exit(1) from its BigFloat division)

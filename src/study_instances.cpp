@@ -14,10 +14,14 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 
+#include "study/contract.hpp"
+#include "study/conversion.hpp"
 #include "study/gap.hpp"
 #include "study_internal.hpp"
 #include "study_files.hpp"
@@ -119,9 +123,9 @@ std::pair<MethodOutput, double> run_timed(const Method& m, const std::vector<dou
   return {out, times[kTimingMeasurements / 2]};
 }
 
-std::string outcome_of(const MethodOutput& m, const Instance& inst) {
+std::string outcome_of(const MethodOutput& m, const Instance& inst, Contract c) {
   if (inst.certified == Answer::undecided) return "uncertified";
-  return std::string(to_string(judge(m, inst.certified)));
+  return std::string(to_string(judge(m, certified_under(inst, c))));
 }
 
 MethodOutput run_quiet(const Method& m, const std::vector<double>& x) {
@@ -144,13 +148,36 @@ std::vector<std::vector<Row>> run_instances(const StudyOptions& o, const Registr
   auto applies = [&](const Planned& p, const Method& m) {
     return m.query == p.inst.query && (mix(0, p.index_in_family) >> 32) % m.stride == 0 && keep_name(o.methods, m.name());
   };
-  auto row_of = [](const Planned& p, const Method& m, const MethodOutput& res, bool ended) {
+  // The certified answers of the instances the methods received (study/conversion.hpp), per
+  // planned instance and conversion name: each certified once, on the thread of its instance.
+  std::vector<std::map<std::string, Answer>> received(plan.size());
+  auto received_answer = [&](std::size_t pi, const Method& m) -> std::optional<Answer> {
+    if (!m.conversion || plan[pi].inst.certified == Answer::undecided) return std::nullopt;
+    const std::string key = m.conversion->name + "/" + std::string(to_string(m.contract));
+    const auto it = received[pi].find(key);
+    if (it != received[pi].end()) return it->second;
+    Answer a = Answer::undecided;
+    try {
+      a = m.conversion->certified(plan[pi].inst.query, plan[pi].inst.x, m.contract);
+    } catch (const std::exception&) {  // the received instance is not a valid input
+    }
+    return received[pi][key] = a;
+  };
+  auto row_of = [&](std::size_t pi, const Method& m, const MethodOutput& res, bool ended) {
+    const Planned& p = plan[pi];
     const Instance& inst = p.inst;
     Row r;
     r.family = inst.family, r.query = std::string(to_string(inst.query)), r.instance = inst.id, r.k = p.k;
     r.expected = std::string(to_string(inst.expected));
     r.method = m.name(), r.base = m.base, r.nt = m.nt, r.kind = std::string(to_string(m.kind));
-    r.answer = ended ? "process_ended" : answer_label(res), r.certified = std::string(to_string(inst.certified)), r.outcome = outcome_of(res, inst);
+    r.answer = ended ? "process_ended" : answer_label(res), r.certified = std::string(to_string(inst.certified));
+    r.outcome = outcome_of(res, inst, m.contract);
+    r.contract = std::string(to_string(m.contract));
+    const Answer under = certified_under(inst, m.contract);
+    r.contract_answer = std::string(to_string(under));
+    const std::optional<Answer> got = received_answer(pi, m);
+    if (got) r.received_answer = std::string(to_string(*got));
+    if (!ended) r.cause = std::string(to_string(error_cause(res, under, got)));
     r.gap_lo = inst.gap_lo, r.gap_hi = inst.gap_hi;
     if (is_line_query(inst.query) && !res.intersecting && intersects(res.answer) && intersects(inst.certified) &&
         std::isfinite(res.t_in) && std::isfinite(inst.t_in))
@@ -162,7 +189,7 @@ std::vector<std::vector<Row>> run_instances(const StudyOptions& o, const Registr
   parallel_for(plan.size(), o.threads, [&](std::size_t pi) {
     certify(plan[pi].inst);
     for (const Method& m : registry)
-      if (!m.serial && applies(plan[pi], m)) rows[pi].push_back(row_of(plan[pi], m, run_quiet(m, plan[pi].inst.x), false));
+      if (!m.serial && applies(plan[pi], m)) rows[pi].push_back(row_of(pi, m, run_quiet(m, plan[pi].inst.x), false));
     progress.tick();
   });
   // The timing pass, on this thread alone, pinned: every method timed by run_timed, in registry
@@ -190,7 +217,7 @@ std::vector<std::vector<Row>> run_instances(const StudyOptions& o, const Registr
           if (c.ended)
             std::cerr << "certcyl study: " << m.name() << " ended its process on instance " << p.inst.id << " (" << c.reason
                       << "): answered process_ended\n";
-          rows[pi].push_back(row_of(p, m, c.out, c.ended));
+          rows[pi].push_back(row_of(pi, m, c.out, c.ended));
           rows[pi].back().ns = c.ns;
         } else {
           if (next >= answered.size() || answered[next].method != m.name()) throw std::logic_error("run_instances: answer pass out of order");

@@ -55,6 +55,10 @@ struct Row {
   std::string expected, method, base, nt, kind, answer, certified, outcome;
   double gap_lo = 0, gap_hi = 0, ns = 0;
   double t_error = std::numeric_limits<double>::quiet_NaN();
+  // The method's contract, the certified answer under it (outcome judges against this one), the
+  // certified answer of the instance the method received (empty: the input itself) and, for a
+  // wrong answer, its cause (study/conversion.hpp).
+  std::string contract = "solid", contract_answer, received_answer, cause;
 };
 
 extern const char* const kRowHeader;     // instances.csv
@@ -101,8 +105,9 @@ std::vector<Planned> plan_instances(const StudyOptions& o);
 // ---- Running methods (study_instances.cpp) -----------------------------------------------------
 
 // The outcome column of instances.csv: "uncertified" when the certified query left the instance
-// undecided, else the judgement of the method's output (study/methods.hpp).
-std::string outcome_of(const study::MethodOutput& m, const study::Instance& inst);
+// undecided, else the judgement of the method's output (study/methods.hpp) against the certified
+// answer under the method's contract (study/contract.hpp).
+std::string outcome_of(const study::MethodOutput& m, const study::Instance& inst, study::Contract c = study::Contract::solid);
 
 // The method's output (error set when it throws); serial methods one at a time.
 study::MethodOutput run_quiet(const study::Method& m, const std::vector<double>& x);
@@ -195,6 +200,11 @@ struct MapGrid {
 std::vector<MapGrid> map_grids(std::uint64_t seed, int cells, long step);
 // A map cell's code of an answer: s, t, o, i (a boolean "they meet"), u, e (error or invalid).
 char answer_code(const study::MethodOutput& m);
+// The code of a method's answer on a certified cell under its contract (study/contract.hpp):
+// where the contract's certified answer differs from the solid one as a Boolean answer, 'c' when
+// the method answers as its contract says (not wrong) and 'x' when it does not (wrong under its
+// contract: it says the sets meet where the contract says it misses); else answer_code.
+char contract_code(const study::MethodOutput& m, const study::Instance& inst, study::Contract c);
 // Writes maps/<name>.csv (lines[cell] then one code per method: codes[cell][k] for methods[k],
 // '.' not evaluated) and maps/<name>.json (the grid, and the methods' map_strides).
 void write_failure_map(const fs::path& maps, const MapGrid& grid, const std::vector<std::string>& lines,
@@ -203,13 +213,15 @@ void write_failure_map(const fs::path& maps, const MapGrid& grid, const std::vec
 // hunt.csv in dir: this shard's share of the methods (study_hunt.cpp).
 void run_hunt(const StudyOptions& o, const study::Registry& registry, const fs::path& dir);
 // The hunt of one method (`run` its answer to an input), shared by the study and `certcyl
-// judge` (study_hunt.cpp): `budget` evaluations from the degenerate configurations of the
-// query's families; returns its hunt.csv line. `trace`, when set, hears of each start family
+// judge` (study_hunt.cpp): `budget` evaluations, a quarter on independent samples of the query's
+// families (half of them uniform random inputs), the rest local searches from the degenerate
+// configurations and from the worst wrong answer found, judged under `contract`
+// (study/contract.hpp); returns its hunt.csv line. `trace`, when set, hears of each start family
 // ("F name") and of each input before the method runs on it ("X hexfloats"), so the parent of a
 // hunt run in a child process learns which input ended the process.
 std::string hunt_worst(const std::string& name, study::Query query, std::uint64_t seed, long budget,
                        const std::function<study::MethodOutput(const std::vector<double>&)>& run,
-                       const std::function<void(const std::string&)>& trace);
+                       const std::function<void(const std::string&)>& trace, study::Contract contract = study::Contract::solid);
 // The contents of machine.json (study_machine.cpp).
 nlohmann::ordered_json machine_json(const StudyOptions& o, const std::vector<std::string>& peers);
 // summary.txt, summary.csv, summary_families.csv and stages.csv from dir's instances.csv and

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "study/families.hpp"
+#include "study/contract.hpp"
 #include "study/gap.hpp"
 #include "study_internal.hpp"
 #include "study_files.hpp"
@@ -65,6 +66,16 @@ char answer_code(const MethodOutput& m) {
     case Answer::undecided: return 'u';
   }
   return 'u';
+}
+
+char contract_code(const MethodOutput& m, const Instance& inst, Contract c) {
+  const char code = answer_code(m);
+  const Answer under = certified_under(inst, c);
+  if (c == Contract::solid || inst.certified == Answer::undecided || intersects(under) == intersects(inst.certified) || code == 'e' ||
+      code == 'u')
+    return code;
+  // else: the contract's answer is not the solid one here.
+  return judge(m, under) == Outcome::agree ? 'c' : 'x';
 }
 
 std::vector<double> MapGrid::input(std::size_t cell) const {
@@ -129,6 +140,7 @@ void write_failure_map(const fs::path& maps, const MapGrid& g, const std::vector
                               {"ulps_per_cell", g.step},
                               {"map_strides", strides},
                               {"codes", "s separated, t touching, o overlapping, i intersecting (boolean methods), u undecided, e error or invalid (a reported value not finite), "
+                                        "c as the method's contract says where it differs from the solid answer (not wrong), x not as its contract says there (wrong), "
                                         ". not evaluated (a slow method runs on every map_stride-th row and column through the centre)"}};
   write_whole(maps / (g.name + ".json"), meta.dump(2) + '\n');
 }
@@ -159,11 +171,13 @@ void run_failure_maps(const StudyOptions& o, const Registry& registry, const fs:
       certify(inst);
       lines[cell] = grid.certified_line(cell, inst);
       for (std::size_t k = 0; k < methods.size(); ++k)
-        if (!methods[k]->serial && evaluated(*methods[k], i, j)) codes[cell][k] = answer_code(run_quiet(*methods[k], inst.x));
+        if (!methods[k]->serial && evaluated(*methods[k], i, j))
+          codes[cell][k] = contract_code(run_quiet(*methods[k], inst.x), inst, methods[k]->contract);
       progress.tick();
     });
     // The serial methods, on this thread only (see Method::serial), each call in a child process
-    // (ChildRunner: a call that ends it, as CORE::Expr does on some inputs, is an error, 'e').
+    // (ChildRunner: a call that ends it, as CORE::Expr does on some inputs, is an error, 'e');
+    // all of them have the solid contract.
     std::vector<const Method*> serial;
     for (const Method* m : methods)
       if (m->serial) serial.push_back(m);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "certcyl/dispatch.hpp"
+#include "study/conversion.hpp"
 #include "study/methods.hpp"
 
 namespace certcyl::cli {
@@ -47,6 +48,17 @@ inline void mark_serial(study::Registry& r) {
     if (m.nt == "core_expr") m.serial = true;
 }
 
+// Gives the methods in Gmpfr below 53 bits the instance they receive: every coordinate rounded
+// to their precision (study/conversion.hpp; from_binary64 above).
+inline void attach_conversions(study::Registry& r) {
+  const std::string prefix = "gmpfr<";
+  for (study::Method& m : r) {
+    if (m.nt.rfind(prefix, 0) != 0) continue;
+    const long bits = std::stol(m.nt.substr(prefix.size()));
+    if (bits < 53) m.conversion = std::make_shared<const study::Conversion>(study::rounding_to_bits(bits));
+  }
+}
+
 void register_line_methods(study::Registry& r);
 void register_triangle_methods(study::Registry& r);
 void register_cylinder_methods(study::Registry& r);
@@ -60,6 +72,7 @@ inline study::Registry all_methods_registry() {
   register_cylinder_methods(r);
   register_peer_methods(r);
   mark_serial(r);
+  attach_conversions(r);
   return r;
 }
 

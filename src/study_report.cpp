@@ -33,6 +33,12 @@ struct Tally {
   std::string kind;
   std::set<std::string> queries;
   long n = 0, fp = 0, fn = 0, cls = 0, undecided = 0, errors = 0, invalid = 0;
+  // The Boolean errors (FP + FN) by cause (study/conversion.hpp: a cause of both counts in both),
+  // the instances whose answer under the method's contract differs from the solid one as a
+  // Boolean answer (judged under the contract, so not errors), and whether the method receives
+  // another instance than the input or has a contract other than solid.
+  long conversion = 0, algorithm = 0, unsplit = 0, contract_differs = 0;
+  bool converts = false, own_contract = false;
   std::vector<double> ns;
   // The Boolean error, (FP + FN) / decided; and the three-valued one, (FP + FN + class) / decided,
   // which a Boolean method (one that answers "intersecting") does not have.
@@ -58,6 +64,15 @@ struct Tally {
     undecided += r.outcome == "undecided";
     errors += r.outcome == "error";
     invalid += r.outcome == "invalid";
+    if (r.outcome == "false_positive" || r.outcome == "false_negative") {
+      conversion += r.cause == "conversion" || r.cause == "conversion+algorithm";
+      algorithm += r.cause == "algorithm" || r.cause == "conversion+algorithm";
+      unsplit += r.cause == "unsplit";
+    }
+    const auto meets = [](const std::string& a) { return a == "touching" || a == "overlapping"; };
+    contract_differs += meets(r.contract_answer) != meets(r.certified);
+    converts = converts || !r.received_answer.empty();
+    own_contract = own_contract || r.contract != "solid";
     ns.push_back(r.ns);
   }
 };
@@ -88,6 +103,25 @@ std::string summary_table(std::map<std::string, Tally>& by_method, const std::se
   os << "checks: " << c.instances << " instances, " << c.uncertified << " left undecided by the certified query, "
      << c.gap_sign_mismatch << " gap-sign mismatches, " << c.construction_mismatch
      << " disagreements between construction and certified answer.\n";
+  return os.str();
+}
+
+// The methods that receive another instance than the input, or answer under a ray cast's
+// contract: their Boolean errors by cause and the instances where the contract differs.
+std::string cause_table(std::map<std::tuple<std::string, std::string>, Tally>& by_method_query) {
+  std::ostringstream os;
+  os << "\nWrong answers by cause (FP + FN; conversion: the certified answer of the instance the method received already\n"
+        "differs; algorithm: the method's answer differs from it; unsplit: that instance not certified) and instances where\n"
+        "the method's contract differs from the solid answer (judged under its contract, not counted as errors):\n";
+  os << std::left << std::setw(24) << "query" << std::setw(30) << "method" << std::setw(15) << "contract" << std::right << std::setw(8) << "n"
+     << std::setw(8) << "wrong" << std::setw(8) << "conv" << std::setw(8) << "alg" << std::setw(8) << "unsplit" << std::setw(9) << "contract"
+     << '\n';
+  for (auto& [key, t] : by_method_query) {
+    if (!t.converts && !t.own_contract) continue;
+    os << std::left << std::setw(24) << std::get<0>(key) << std::setw(30) << std::get<1>(key) << std::setw(15)
+       << (t.own_contract ? "own" : "solid") << std::right << std::setw(8) << t.n << std::setw(8) << t.fp + t.fn << std::setw(8)
+       << t.conversion << std::setw(8) << t.algorithm << std::setw(8) << t.unsplit << std::setw(9) << t.contract_differs << '\n';
+  }
   return os.str();
 }
 
@@ -284,25 +318,26 @@ std::string write_summary(const fs::path& dir) {
     }
   }
   const Checks c = checks_from_inputs(dir / "inputs.csv");
-  const std::string table = summary_table(by_method, boolean, c) + core_diagnostics(dir) + '\n' + write_stages(dir) + write_timing(dir, rows);
+  const std::string table = summary_table(by_method, boolean, c) + cause_table(by_method_query) + core_diagnostics(dir) + '\n' +
+                            write_stages(dir) + write_timing(dir, rows);
   // The three-valued rate's field: empty for a Boolean method.
   const auto rate3 = [&boolean](const Tally& t, const std::string& method) { return boolean.count(method) ? std::string() : num(t.rate3()); };
   write_whole(dir / "summary.txt", table);
   std::ofstream csv(dir / "summary.csv");
   csv << "query,method,kind,n,false_positive,false_negative,class_mismatch,undecided,error,invalid,disagreement_rate,median_ns,"
-         "three_valued_rate\n";
+         "three_valued_rate,contract_differs,conversion_errors,algorithm_errors,unsplit_errors\n";
   for (auto& [key, t] : by_method_query)
     csv << std::get<0>(key) << ',' << std::get<1>(key) << ',' << t.kind << ',' << t.n << ',' << t.fp << ',' << t.fn << ',' << t.cls << ','
         << t.undecided << ',' << t.errors << ',' << t.invalid << ',' << num(t.rate()) << ',' << num(t.median_ns()) << ','
-        << rate3(t, std::get<1>(key)) << '\n';
+        << rate3(t, std::get<1>(key)) << ',' << t.contract_differs << ',' << t.conversion << ',' << t.algorithm << ',' << t.unsplit << '\n';
   close_written(csv, dir / "summary.csv");
   std::ofstream fam(dir / "summary_families.csv");
   fam << "query,family,method,kind,n,false_positive,false_negative,class_mismatch,undecided,error,invalid,disagreement_rate,"
-         "three_valued_rate\n";
+         "three_valued_rate,contract_differs,conversion_errors,algorithm_errors,unsplit_errors\n";
   for (auto& [key, t] : by_family)
     fam << std::get<0>(key) << ',' << std::get<1>(key) << ',' << std::get<2>(key) << ',' << t.kind << ',' << t.n << ',' << t.fp << ','
         << t.fn << ',' << t.cls << ',' << t.undecided << ',' << t.errors << ',' << t.invalid << ',' << num(t.rate()) << ','
-        << rate3(t, std::get<2>(key)) << '\n';
+        << rate3(t, std::get<2>(key)) << ',' << t.contract_differs << ',' << t.conversion << ',' << t.algorithm << ',' << t.unsplit << '\n';
   close_written(fam, dir / "summary_families.csv");
   return table;
 }

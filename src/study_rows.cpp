@@ -11,7 +11,8 @@ namespace certcyl::cli::detail {
 using namespace certcyl::study;
 
 const char* const kRowHeader =
-    "family,query,instance,k_ulps,expected,method,base,nt,kind,answer,certified_answer,outcome,gap_lo,gap_hi,ns,t_error_ulps";
+    "family,query,instance,k_ulps,expected,method,base,nt,kind,answer,certified_answer,outcome,gap_lo,gap_hi,ns,t_error_ulps,"
+    "contract,contract_answer,received_answer,cause";
 const char* const kInputsHeader =
     "instance,family,query,k_ulps,expected,certified_answer,gap_lo,gap_hi,gap_sign_ok,stage,certified_by,gmpfr_bits,input_hex";
 const char* const kHuntHeader = "method,query,start_family,evaluations,found,answer,certified_answer,outcome,gap_lo,gap_hi,input_hex";
@@ -33,7 +34,8 @@ double parse_num(const std::string& s) {
 void write_row(std::ostream& os, const Row& r) {
   os << r.family << ',' << r.query << ',' << r.instance << ',' << r.k << ',' << r.expected << ',' << r.method << ',' << r.base
      << ',' << r.nt << ',' << r.kind << ',' << r.answer << ',' << r.certified << ',' << r.outcome << ',' << num(r.gap_lo) << ','
-     << num(r.gap_hi) << ',' << num(r.ns) << ',' << num(r.t_error) << '\n';
+     << num(r.gap_hi) << ',' << num(r.ns) << ',' << num(r.t_error) << ',' << r.contract << ',' << r.contract_answer << ','
+     << r.received_answer << ',' << r.cause << '\n';
 }
 
 std::string csv_field(const std::string& s) {
@@ -74,7 +76,7 @@ std::vector<std::string> split_csv(const std::string& line) {
 
 Row parse_row(const std::string& line) {
   const auto f = split_csv(line);
-  if (f.size() != 16) throw std::runtime_error("instances.csv: bad row '" + line + "'");
+  if (f.size() != 20) throw std::runtime_error("instances.csv: bad row '" + line + "'");
   Row r;
   try {
     r.instance = std::stoull(f[2]), r.k = std::stoll(f[3]);
@@ -84,6 +86,7 @@ Row parse_row(const std::string& line) {
   r.family = f[0], r.query = f[1], r.expected = f[4];
   r.method = f[5], r.base = f[6], r.nt = f[7], r.kind = f[8], r.answer = f[9], r.certified = f[10], r.outcome = f[11];
   r.gap_lo = parse_num(f[12]), r.gap_hi = parse_num(f[13]), r.ns = parse_num(f[14]), r.t_error = parse_num(f[15]);
+  r.contract = f[16], r.contract_answer = f[17], r.received_answer = f[18], r.cause = f[19];
   return r;
 }
 

@@ -205,7 +205,8 @@ BOOST_AUTO_TEST_CASE(tiny_study_end_to_end) {
   const auto rows = lines_of(dir / "instances.csv");
   BOOST_TEST_REQUIRE(rows.size() > 1000u);
   BOOST_TEST(rows[0] ==
-             "family,query,instance,k_ulps,expected,method,base,nt,kind,answer,certified_answer,outcome,gap_lo,gap_hi,ns,t_error_ulps");
+             "family,query,instance,k_ulps,expected,method,base,nt,kind,answer,certified_answer,outcome,gap_lo,gap_hi,ns,t_error_ulps,"
+             "contract,contract_answer,received_answer,cause");
   std::set<std::string> outcomes, queries;
   for (std::size_t i = 1; i < rows.size(); ++i) {
     std::vector<std::string> f;

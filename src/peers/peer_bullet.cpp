@@ -4,14 +4,29 @@
 //                      default collision margin (0.04: Bullet keeps the extents and rounds the
 //                      edges by the margin) and with setMargin(0).
 //   ray, segment       btCollisionWorld::rayTestSingle from the origin to origin + direction
-//                      (segment) or origin + 1e4 direction (ray); hasHit().
-// The inputs are rounded to float on the way in, as a Bullet user's would be.
+//                      (segment) or origin + 1e4 direction (ray); hasHit(). Its contract is
+//                      surface entry (study/contract.hpp): a ray starting in the cylinder does
+//                      not hit it.
+// The inputs are rounded to float on the way in, as a Bullet user's would be, so Bullet solves a
+// differently rounded instance; its Conversion (study/conversion.hpp) certifies that instance:
+// the pose, radius and half length as floats (peer_frame.hpp, received_pose) and, for rays and
+// segments, the float ends Bullet casts between, exactly. A ray or segment is certified against
+// the received cylinder as an elliptic cylinder (the float rotation is not orthonormal unless
+// the axis is a coordinate axis); a pair only when both received rotations are exactly
+// orthonormal (circular cylinders), else it is left unsplit.
 #include <btBulletCollisionCommon.h>
 
+#include <cmath>
 #include <memory>
+#include <stdexcept>
+#include <utility>
 
+#include "certcyl/certified/cylinder_cylinder.hpp"
+#include "certcyl/certified/line_cylinder.hpp"
 #include "peer_frame.hpp"
 #include "peers.hpp"
+#include "study/contract.hpp"
+#include "study/conversion.hpp"
 
 namespace certcyl::cli {
 namespace {
@@ -62,6 +77,15 @@ bool bullet_cylinders(const std::vector<double>& x, bool default_margin) {
   return result.hit;
 }
 
+// The ends Bullet casts between, in float: the segment's, or the ray's origin and origin + 1e4
+// direction.
+std::pair<btVector3, btVector3> bullet_ray_ends(const std::vector<double>& x, bool segment) {
+  const btVector3 from{btScalar(x[0]), btScalar(x[1]), btScalar(x[2])};
+  const btVector3 to = segment ? btVector3(btScalar(x[3]), btScalar(x[4]), btScalar(x[5]))
+                               : from + btScalar(1e4) * btVector3(btScalar(x[3]), btScalar(x[4]), btScalar(x[5]));
+  return {from, to};
+}
+
 bool bullet_ray(const std::vector<double>& x, bool segment, bool default_margin) {
   const Cylinder<double> c = study::cylinder_at(x, 6);
   const PeerPose p = peer_pose(c);
@@ -70,9 +94,7 @@ bool bullet_ray(const std::vector<double>& x, bool segment, bool default_margin)
   btCollisionObject object;
   object.setCollisionShape(&shape);
   object.setWorldTransform(bt_pose(p));
-  const btVector3 from{btScalar(x[0]), btScalar(x[1]), btScalar(x[2])};
-  const btVector3 to = segment ? btVector3(btScalar(x[3]), btScalar(x[4]), btScalar(x[5]))
-                               : from + btScalar(1e4) * btVector3(btScalar(x[3]), btScalar(x[4]), btScalar(x[5]));
+  const auto [from, to] = bullet_ray_ends(x, segment);
   btTransform tf, tt;
   tf.setIdentity(), tt.setIdentity();
   tf.setOrigin(from), tt.setOrigin(to);
@@ -81,11 +103,34 @@ bool bullet_ray(const std::vector<double>& x, bool segment, bool default_margin)
   return result.hasHit();
 }
 
+// The certified answer of the instance Bullet receives (see the file's comment); undecided when
+// it is not one the certified queries answer.
+Answer bullet_received(study::Query q, const std::vector<double>& x, study::Contract contract) {
+  using study::Query;
+  if (q == Query::cylinder_cylinder) {
+    const auto a = received_pose<float>(study::cylinder_at(x, 0)), b = received_pose<float>(study::cylinder_at(x, 7));
+    if (!a || !b) return Answer::undecided;
+    const auto ca = as_circular(*a), cb = as_circular(*b);
+    if (!ca || !cb) return Answer::undecided;
+    return certified_cylinder_cylinder(*ca, *cb).answer;
+  }
+  const auto pose = received_pose<float>(study::cylinder_at(x, 6));
+  if (!pose) return Answer::undecided;
+  const auto [from, to] = bullet_ray_ends(x, q == Query::segment_cylinder);
+  const auto point = [](const btVector3& v) {
+    if (!std::isfinite(v.x()) || !std::isfinite(v.y()) || !std::isfinite(v.z())) throw std::domain_error("an end overflowed in float");
+    return Point3<Rational>{Rational(double(v.x())), Rational(double(v.y())), Rational(double(v.z()))};
+  };
+  const Segment<Rational> cast{point(from), point(to)};
+  return study::contract_answer(certified_line_cylinder(cast, as_elliptic(*pose)), contract);
+}
+
 }  // namespace
 
 std::string register_bullet_methods(study::Registry& r) {
   using study::MethodKind;
   using study::Query;
+  const auto received = std::make_shared<const study::Conversion>(study::Conversion{"bullet_float", bullet_received});
   for (bool margin : {true, false}) {
     const std::string base = margin ? "bullet" : "bullet_margin0";
     r.push_back({base, "float", MethodKind::peer, Query::cylinder_cylinder, 1, {},
@@ -94,6 +139,10 @@ std::string register_bullet_methods(study::Registry& r) {
                  [margin](const std::vector<double>& x) { return study::boolean_answer(bullet_ray(x, false, margin)); }});
     r.push_back({base, "float", MethodKind::peer, Query::segment_cylinder, 1, {},
                  [margin](const std::vector<double>& x) { return study::boolean_answer(bullet_ray(x, true, margin)); }});
+    for (std::size_t i = r.size() - 3; i < r.size(); ++i) {
+      r[i].conversion = received;
+      if (r[i].query != Query::cylinder_cylinder) r[i].contract = study::Contract::surface_entry;
+    }
   }
   return "Bullet " + std::to_string(BT_BULLET_VERSION);
 }

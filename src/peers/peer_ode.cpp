@@ -2,7 +2,8 @@
 // outside any space, true when it returns a contact.
 //   cylinder-cylinder  two dCreateCylinder geoms (ODE's cylinder is along z, centred)
 //   ray, segment       dCreateRay from the origin along the direction, of length |direction|
-//                      (segment) or 1e4 |direction| (ray)
+//                      (segment) or 1e4 |direction| (ray). Its contract is surface hit
+//                      (study/contract.hpp): a ray starting in the cylinder hits where it exits.
 //   triangle           a one-triangle dCreateTriMesh against the cylinder, in both windings
 //                      (ODE skips back-facing triangles)
 #include <ode/ode.h>
@@ -89,8 +90,10 @@ std::string register_ode_methods(study::Registry& r) {
                }});
   r.push_back({"ode", "double", MethodKind::peer, Query::ray_cylinder, 1, {},
                [](const std::vector<double>& x) { return study::boolean_answer(ode_ray(x, false)); }});
+  r.back().contract = study::Contract::surface_hit;
   r.push_back({"ode", "double", MethodKind::peer, Query::segment_cylinder, 1, {},
                [](const std::vector<double>& x) { return study::boolean_answer(ode_ray(x, true)); }});
+  r.back().contract = study::Contract::surface_hit;
   // ODE's trimesh colliders skip a back-facing triangle (one winding alone misses even a
   // triangle crossing the cylinder through its axis): a one-sided surface is what a user
   // meshing a closed solid gets, so a lone triangle is tested with both windings.

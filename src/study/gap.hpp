@@ -64,6 +64,7 @@
 #include "certcyl/certified/cylinder_cylinder.hpp"
 #include "certcyl/certified/line_cylinder.hpp"
 #include "certcyl/certified/triangle_cylinder.hpp"
+#include "study/contract.hpp"
 #include "study/instance.hpp"
 
 namespace certcyl::study {
@@ -441,7 +442,8 @@ inline Answer answer_of_margin(const MarginEnclosure& g) {
 
 }  // namespace detail
 
-// Computes inst.certified, the gap enclosure, (line queries) t_in and (cylinder pairs) the stage,
+// Computes inst.certified, its answers under the ray-cast contracts (study/contract.hpp), the gap
+// enclosure, (line queries) t_in and (cylinder pairs) the stage,
 // arithmetic and Gmpfr precision that decided. Sets certified_ok to false when the gap's sign
 // and the certified answer differ (a defect the study reports): the depth margin's sign comes
 // from its own exact comparison with 0 (compare_line_margin, compare_triangle_margin), not from
@@ -458,6 +460,8 @@ inline void certify(Instance& inst, const CylinderCylinderOptions& cyl_options =
   const std::vector<double>& x = inst.x;
   auto finish_line = [&](const CertifiedLineResult& r, const MarginEnclosure& gap) {
     inst.certified = r.answer;
+    inst.certified_entry = contract_answer(r, Contract::surface_entry);
+    inst.certified_surface_hit = contract_answer(r, Contract::surface_hit);
     if (r.in) inst.t_in = r.in->nearest;
     std::tie(inst.gap_lo, inst.gap_hi) = enclose_margin_doubles(gap);
     inst.certified_ok = answer_of_margin(gap) == r.answer;
@@ -487,14 +491,14 @@ inline void certify(Instance& inst, const CylinderCylinderOptions& cyl_options =
       const Cylinder<Rational> C = cylinder_at(q, 9);
       const TriangleCylinderResult r = certified_triangle_cylinder(T, C);
       const MarginEnclosure gap = triangle_margin(T, C);
-      inst.certified = r.answer;
+      inst.certified = inst.certified_entry = inst.certified_surface_hit = r.answer;
       std::tie(inst.gap_lo, inst.gap_hi) = enclose_margin_doubles(gap);
       inst.certified_ok = answer_of_margin(gap) == r.answer;
       return;
     }
     case Query::cylinder_cylinder: {
       const CylinderCylinderResult r = certified_cylinder_cylinder(cylinder_at(x, 0), cylinder_at(x, 7), cyl_options);
-      inst.certified = r.answer;
+      inst.certified = inst.certified_entry = inst.certified_surface_hit = r.answer;
       inst.stage = to_string(r.stage);
       inst.certified_by = to_string(r.certified_by);
       inst.gmpfr_precision = r.gmpfr_precision;

@@ -101,6 +101,9 @@ struct Instance {
   double gap_lo = 0, gap_hi = 0;                               // the certified signed gap
   double t_in = std::numeric_limits<double>::quiet_NaN();      // line queries: nearest double to the exact entry parameter
   bool certified_ok = false;
+  // The certified answer under the ray-cast contracts (study/contract.hpp): surface entry and
+  // surface hit; equal to `certified` for every query but rays and segments.
+  Answer certified_entry = Answer::undecided, certified_surface_hit = Answer::undecided;
   // cylinder_cylinder only (certified/cylinder_cylinder.hpp): the stage that decided (result.stage),
   // the arithmetic of its deciding check (result.certified_by) and the highest precision of the
   // Gmpfr stage's rounds (result.gmpfr_precision, 0 if none ran); empty and 0 for the other

@@ -24,6 +24,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -71,6 +72,21 @@ inline constexpr std::string_view to_string(MethodKind k) {
   return "?";
 }
 
+// What a method's positive answer promises (study/contract.hpp): the solid answer, or a ray
+// cast's surface entry or surface hit.
+enum class Contract { solid, surface_entry, surface_hit };
+
+inline constexpr std::string_view to_string(Contract c) {
+  switch (c) {
+    case Contract::solid: return "solid";
+    case Contract::surface_entry: return "surface_entry";
+    case Contract::surface_hit: return "surface_hit";
+  }
+  return "?";
+}
+
+struct Conversion;  // study/conversion.hpp
+
 // A method's share of the failure maps and the failure hunting. Every method takes part; a
 // slow one evaluates a map on every map_stride-th row and column only (the rows and columns
 // through the degenerate centre cell: map_stride^2 times fewer cells), and the hunt spends
@@ -94,6 +110,11 @@ struct Method {
   // at a time, ended in CORE's "zero divisor" exit on the failure maps) and ODE's trimesh
   // collider (its OPCODE caches are not thread-safe: a segmentation fault with two threads).
   bool serial = false;
+  // What its answer promises for this query (study/contract.hpp); judged against it.
+  Contract contract = Contract::solid;
+  // The instance it receives, when that is not the binary64 input itself (study/conversion.hpp:
+  // Gmpfr below 53 bits, Bullet's floats); null otherwise.
+  std::shared_ptr<const Conversion> conversion = nullptr;
 
   std::string name() const { return base + "/" + nt; }
 };
