@@ -4,7 +4,9 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -105,7 +107,11 @@ std::string hunt_worst(const std::string& name, Query query, std::uint64_t seed,
   std::string best_family;
   auto score = [&](Instance& inst, MethodOutput& out) {
     ++evaluations;
-    certify(inst);
+    try {
+      certify(inst);
+    } catch (const std::exception&) {  // a move left the valid inputs (a radius <= 0, p0 == p1, ...)
+      return std::numeric_limits<double>::quiet_NaN();
+    }
     if (inst.certified == Answer::undecided) return none;
     if (trace) trace("X " + x_hex(inst.x));
     out = run(inst.x);
@@ -182,6 +188,7 @@ std::string hunt_worst(const std::string& name, Query query, std::uint64_t seed,
       if (!std::isfinite(next.x[c]) || std::fabs(next.x[c] - start[c]) > reach * scale) continue;
       MethodOutput next_out;
       const double sc = score(next, next_out);
+      if (std::isnan(sc)) continue;  // not a valid input: not a move
       // Before a first failure, wander; afterwards, only climb.
       if (sc >= cur_score || cur_score == none) {
         if (sc == none && cur_score == none && long_step) continue;

@@ -24,6 +24,7 @@
 
 #include <functional>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -104,6 +105,8 @@ inline constexpr std::string_view to_string(ErrorCause e) {
   }
   return "";
 }
+
+inline std::ostream& operator<<(std::ostream& os, ErrorCause e) { return os << (e == ErrorCause::none ? "none" : to_string(e)); }
 
 // Why the output m is wrong against the certified answer `original` (under the method's
 // contract), given the certified answer `received` of the instance the method received
