@@ -127,7 +127,8 @@ std::string hunt_worst(const std::string& name, Query query, std::uint64_t seed,
   // Phase 1, sampling: a quarter of the budget on independent inputs, every other one from the
   // uniform family (generic input, far from every degeneracy: where a method wrong on a share of
   // typical inputs is found) and the others from a random family at a random displacement k.
-  const long sampled = budget >= 4 ? budget / 4 : 0;
+  // A budget below 200 (a smoke run: `certcyl judge --size small` spends 150) is all local search.
+  const long sampled = budget >= 200 ? budget / 4 : 0;
   for (long i = 0; i < sampled; ++i) {
     const Family* f = uniform && (i % 2 == 0 || starts.empty())
                           ? uniform
@@ -144,7 +145,7 @@ std::string hunt_worst(const std::string& name, Query query, std::uint64_t seed,
   // (k = 0) and, once a wrong answer is known, every other restart from the best one so far; each
   // climbs by moves of one coordinate that keep the method wrong and raise the score.
   const long remaining = budget - evaluations;
-  const long restarts = std::max(1L, remaining / 50);
+  const long restarts = std::max(1L, budget / 50);
   for (long r = 0; r < restarts && evaluations < budget; ++r) {
     const bool from_best = best_score > none && (r % 2 == 1 || starts.empty());
     Instance cur;
@@ -211,7 +212,7 @@ std::string hunt_worst(const std::string& name, Query query, std::uint64_t seed,
   return line.str();
 }
 
-// For each method (hunt_worst): a quarter of the evaluations on independent inputs, half of them
+// For each method (hunt_worst): a quarter of the evaluations (of 200 or more) on independent inputs, half of them
 // uniform random ones and half from the query's families at random displacements; then random
 // restarts at the degenerate configurations of its query's families (k = 0), alternating, once
 // a wrong answer is known, with restarts from the best one; each a local search over ulp

@@ -213,8 +213,8 @@ void write_failure_map(const fs::path& maps, const MapGrid& grid, const std::vec
 // hunt.csv in dir: this shard's share of the methods (study_hunt.cpp).
 void run_hunt(const StudyOptions& o, const study::Registry& registry, const fs::path& dir);
 // The hunt of one method (`run` its answer to an input), shared by the study and `certcyl
-// judge` (study_hunt.cpp): `budget` evaluations, a quarter on independent samples of the query's
-// families (half of them uniform random inputs), the rest local searches from the degenerate
+// judge` (study_hunt.cpp): `budget` evaluations, a quarter (for a budget of 200 or more) on
+// independent samples of the query's families (half of them uniform random inputs), the rest local searches from the degenerate
 // configurations and from the worst wrong answer found, judged under `contract`
 // (study/contract.hpp); returns its hunt.csv line. `trace`, when set, hears of each start family
 // ("F name") and of each input before the method runs on it ("X hexfloats"), so the parent of a

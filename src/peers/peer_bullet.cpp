@@ -10,7 +10,8 @@
 // The inputs are rounded to float on the way in, as a Bullet user's would be, so Bullet solves a
 // differently rounded instance; its Conversion (study/conversion.hpp) certifies that instance:
 // the pose, radius and half length as floats (peer_frame.hpp, received_pose) and, for rays and
-// segments, the float ends Bullet casts between, exactly. A ray or segment is certified against
+// segments, the float ends Bullet casts between, exactly (a cast whose ends round to one point
+// enters nothing). A ray or segment is certified against
 // the received cylinder as an elliptic cylinder (the float rotation is not orthonormal unless
 // the axis is a coordinate axis); a pair only when both received rotations are exactly
 // orthonormal (circular cylinders), else it is left unsplit.
@@ -121,6 +122,12 @@ Answer bullet_received(study::Query q, const std::vector<double>& x, study::Cont
     if (!std::isfinite(v.x()) || !std::isfinite(v.y()) || !std::isfinite(v.z())) throw std::domain_error("an end overflowed in float");
     return Point3<Rational>{Rational(double(v.x())), Rational(double(v.y())), Rational(double(v.z()))};
   };
+  // A cast whose ends round to one float (a segment far from the origin) is a point; it
+  // enters nothing, so under the surface-entry contract it misses.
+  if (from == to) {
+    if (contract == study::Contract::surface_entry) return Answer::separated;
+    return Answer::undecided;
+  }
   const Segment<Rational> cast{point(from), point(to)};
   return study::contract_answer(certified_line_cylinder(cast, as_elliptic(*pose)), contract);
 }
