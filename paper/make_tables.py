@@ -135,8 +135,9 @@ class Tally:
 
     def __init__(self):
         self.n = self.fp = self.fn = self.cls = self.undec = self.err = self.inv = 0
-        # Boolean errors (FP + FN) by cause (instances.csv's cause: a cause of both counts in
-        # both), and the instances whose answer under the method's contract is not the solid one.
+        # Boolean errors (FP + FN) by cause (instances.csv's cause: each is conversion, algorithm
+        # or unsplit), and the instances whose answer under the method's contract is not the solid
+        # one.
         self.conv = self.alg = self.unsplit = self.cdiff = 0
         self.contract = "solid"
         self.converts = False
@@ -361,7 +362,7 @@ def main():
         N[f"cdiff:{q}:{m}"] = str(t.cdiff)
     # The peers and the methods that receive a rounded instance (Bullet's floats, Gmpfr at 24
     # bits): per query, the contract, the Boolean errors split into conversion and algorithm
-    # (a cause of both counts in both), and the instances where the contract differs from the
+    # (each error is one of them: conv + alg + unsplit = wrong), and the instances where the contract differs from the
     # solid answer, judged under the contract and not counted as errors.
     CONTRACT_TEX = {"solid": "solid", "surface_entry": "entry", "surface_hit": "hit"}
     # (The peers per query; the 24-bit methods over their queries, "all".)

@@ -33,12 +33,14 @@ struct Tally {
   std::string kind;
   std::set<std::string> queries;
   long n = 0, fp = 0, fn = 0, cls = 0, undecided = 0, errors = 0, invalid = 0;
-  // The Boolean errors (FP + FN) by cause (study/conversion.hpp: a cause of both counts in both),
+  // The Boolean errors (FP + FN) by cause (study/conversion.hpp: each is one of conversion,
+  // algorithm and unsplit),
   // the instances whose answer under the method's contract differs from the solid one as a
   // Boolean answer (judged under the contract, so not errors), and whether the method receives
   // another instance than the input or has a contract other than solid.
   long conversion = 0, algorithm = 0, unsplit = 0, contract_differs = 0;
   bool converts = false, own_contract = false;
+  std::string contract = "solid";
   std::vector<double> ns;
   // The Boolean error, (FP + FN) / decided; and the three-valued one, (FP + FN + class) / decided,
   // which a Boolean method (one that answers "intersecting") does not have.
@@ -72,7 +74,7 @@ struct Tally {
     const auto meets = [](const std::string& a) { return a == "touching" || a == "overlapping"; };
     contract_differs += meets(r.contract_answer) != meets(r.certified);
     converts = converts || !r.received_answer.empty();
-    own_contract = own_contract || r.contract != "solid";
+    if (r.contract != "solid") own_contract = true, contract = r.contract;
     ns.push_back(r.ns);
   }
 };
@@ -113,13 +115,12 @@ std::string cause_table(std::map<std::tuple<std::string, std::string>, Tally>& b
   os << "\nWrong answers by cause (FP + FN; conversion: the certified answer of the instance the method received already\n"
         "differs; algorithm: the method's answer differs from it; unsplit: that instance not certified) and instances where\n"
         "the method's contract differs from the solid answer (judged under its contract, not counted as errors):\n";
-  os << std::left << std::setw(24) << "query" << std::setw(30) << "method" << std::setw(15) << "contract" << std::right << std::setw(8) << "n"
+  os << std::left << std::setw(24) << "query" << std::setw(40) << "method" << std::setw(15) << "contract" << std::right << std::setw(8) << "n"
      << std::setw(8) << "wrong" << std::setw(8) << "conv" << std::setw(8) << "alg" << std::setw(8) << "unsplit" << std::setw(9) << "contract"
      << '\n';
   for (auto& [key, t] : by_method_query) {
     if (!t.converts && !t.own_contract) continue;
-    os << std::left << std::setw(24) << std::get<0>(key) << std::setw(30) << std::get<1>(key) << std::setw(15)
-       << (t.own_contract ? "own" : "solid") << std::right << std::setw(8) << t.n << std::setw(8) << t.fp + t.fn << std::setw(8)
+    os << std::left << std::setw(24) << std::get<0>(key) << std::setw(40) << std::get<1>(key) << std::setw(15) << t.contract << std::right << std::setw(8) << t.n << std::setw(8) << t.fp + t.fn << std::setw(8)
        << t.conversion << std::setw(8) << t.algorithm << std::setw(8) << t.unsplit << std::setw(9) << t.contract_differs << '\n';
   }
   return os.str();

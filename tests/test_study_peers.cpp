@@ -88,6 +88,9 @@ BOOST_AUTO_TEST_CASE(error_causes_by_hand) {
   BOOST_TEST(error_cause(says_apart, O, U) == ErrorCause::unsplit);
   // Three-valued: original touching, rounded separated, the method says overlapping: both.
   BOOST_TEST(error_cause(three_valued(O), T, S) == ErrorCause::both);
+  // A three-valued method's false positive is split as a Boolean answer: the rounding made the
+  // instance touch, and the method says the sets meet (overlapping): conversion only.
+  BOOST_TEST(error_cause(three_valued(O), S, T) == ErrorCause::conversion);
   // A class mismatch caused by the rounding alone.
   BOOST_TEST(error_cause(three_valued(O), T, O) == ErrorCause::conversion);
 }

@@ -17,7 +17,8 @@
 //                negative, as a three-valued one for a class mismatch): the rounding of the input
 //                alone changed the answer;
 //   algorithm    the method's answer differs from C' too: it is wrong on the instance it solved;
-//   both         conversion and algorithm (possible for a three-valued method only);
+//   both         conversion and algorithm (a class mismatch only: a false positive or negative
+//                is split as a Boolean answer, so it is one or the other);
 //   unsplit      C' could not be certified.
 // A method that reads the input exactly has C' = C: each of its wrong answers is `algorithm`.
 #pragma once
@@ -117,10 +118,18 @@ inline ErrorCause error_cause(const MethodOutput& m, Answer original, const std:
   if (o != Outcome::false_positive && o != Outcome::false_negative && o != Outcome::class_mismatch) return ErrorCause::none;
   if (!received) return ErrorCause::algorithm;
   if (*received == Answer::undecided) return ErrorCause::unsplit;
-  const bool conversion = o == Outcome::class_mismatch ? *received != original : intersects(*received) != intersects(original);
-  const Outcome on_received = judge(m, *received);
-  const bool algorithm =
-      on_received == Outcome::false_positive || on_received == Outcome::false_negative || on_received == Outcome::class_mismatch;
+  // A false positive or negative is split as a Boolean answer: exactly one of the two holds (when
+  // the rounding flipped the Boolean answer, the method's Boolean answer is the received one's).
+  // A class mismatch is split as a three-valued answer, where both may hold.
+  bool conversion = false, algorithm = false;
+  if (o == Outcome::class_mismatch) {
+    conversion = *received != original;
+    const Outcome on_received = judge(m, *received);
+    algorithm = on_received == Outcome::false_positive || on_received == Outcome::false_negative || on_received == Outcome::class_mismatch;
+  } else {
+    conversion = intersects(*received) != intersects(original);
+    algorithm = !conversion;
+  }
   if (conversion && algorithm) return ErrorCause::both;
   return conversion ? ErrorCause::conversion : ErrorCause::algorithm;
 }
