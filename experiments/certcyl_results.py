@@ -23,6 +23,9 @@ and paper/ share.
                           instance rows: the Boolean error rate (FP + FN) / decided and the
                           three-valued one (FP + FN + class) / decided, each with its Wilson interval
   boolean_methods(rows)   the methods that answered `intersecting` (no three-valued answer)
+  uniform_errors(r)       the Errors of a row of uniform.csv (the uniform sample's counts of a
+                          query and method); uniform_boolean(r): whether it is a Boolean method
+  uniform_sample(folder)  the rows of FOLDER/uniform.csv, [] when the study wrote none
   K_BINS, k_bin(k)        the bins of k_ulps (k = 0, then four binades a bin) and a value's bin
   errors_by_k(rows)       (query, method) -> one Errors per bin of K_BINS, hard-case families only
   ran_on(rows)            (query, method) -> the instances (ids) the method ran on
@@ -33,6 +36,10 @@ and paper/ share.
                           (the paired instances, method -> (median ns, Boolean rate, decided)) on
                           the instances of `query` where every method ran: a speed-against-error
                           point per method that compares like with like
+  paired_by_algorithm(rows)
+                          per query, each algorithm's number types compared on the instances
+                          where all of them ran: (query, method) -> PairedTally (paired count,
+                          outcomes, Errors, median ns on those instances)
   input_class(family)     "generic" (the uniform family) or "near_degenerate" (a hard-case family)
   time_stats(values)      (n, p10, p50, p90, mean, max) of times: nearest-rank percentiles and the
                           mean summed in the given order, as the study's timing*.csv files
@@ -220,6 +227,26 @@ class Errors:
         return error_interval(self.wrong3 if three_valued else self.wrong, self.decided)
 
 
+def uniform_errors(r):
+    """The Errors of a row of uniform.csv: its decided answers and wrong ones, counted by the study
+    (the uniform sample keeps counts, not one row per instance)."""
+    e = Errors()
+    e.decided, e.fp, e.fn, e.cls = (int(r[k]) for k in ("decided", "false_positive", "false_negative", "class_mismatch"))
+    return e
+
+
+def uniform_boolean(r):
+    """Whether the method of a row of uniform.csv answered `intersecting` (a Boolean method: no
+    three-valued error)."""
+    return int(r["intersecting"]) > 0
+
+
+def uniform_sample(folder):
+    """The rows of folder/uniform.csv (read through read_csv), [] when the folder has none."""
+    path = os.path.join(folder, "uniform.csv")
+    return read_csv(path) if os.path.exists(path) else []
+
+
 def boolean_methods(rows):
     """The methods of `rows` (instances.csv) that answered `intersecting` at least once: Boolean
     methods, whose three-valued error is not defined."""
@@ -337,6 +364,56 @@ def paired_speed_error(rows, query, methods, ran=None):
                 ns[r["method"]].append(fnum(r["ns"]))
             errs[r["method"]].add(r["outcome"])
     return common, {m: (percentile(ns[m], 50), errs[m].rate, errs[m].decided) for m in methods}
+
+
+class PairedTally:
+    """A method's rows on the paired instances of its algorithm and query: `paired` (how many
+    instances every number type of the algorithm ran on), `n` (its rows there, uncertified ones
+    left out), the outcomes not decided (undecided, error, invalid), the Errors of its decided
+    answers, and the median time (nearest rank; a call that ended its process has none)."""
+
+    __slots__ = ("paired", "n", "undecided", "error", "invalid", "errors", "ns")
+
+    def __init__(self, paired):
+        self.paired, self.n, self.undecided, self.error, self.invalid = paired, 0, 0, 0, 0
+        self.errors, self.ns = Errors(), []
+
+    def add(self, r):
+        if r["outcome"] == "uncertified":
+            return
+        self.n += 1
+        self.undecided += r["outcome"] == "undecided"
+        self.error += r["outcome"] == "error"
+        self.invalid += r["outcome"] == "invalid"
+        self.errors.add(r["outcome"])
+        if r["answer"] != "process_ended":
+            self.ns.append(fnum(r["ns"]))
+
+    @property
+    def median_ns(self):
+        return percentile(self.ns, 50)
+
+
+def paired_by_algorithm(rows):
+    """(query, method) -> PairedTally: each method's rows of instances.csv on the instances of its
+    query where every number type of its algorithm (split_method's base) ran, so that the number
+    types of an algorithm are compared on the same inputs (the slow types run on a pseudo-random
+    share of each family only). An algorithm with one number type keeps all of its instances."""
+    ran = ran_on(rows)
+    by_base = {}
+    for q, m in ran:
+        by_base.setdefault((q, split_method(m)[0]), []).append(m)
+    common, out = {}, {}
+    for (q, base), ms in by_base.items():
+        ids = paired(rows, q, ms, ran)
+        common[(q, base)] = ids
+        for m in ms:
+            out[(q, m)] = PairedTally(len(ids))
+    for r in rows:
+        q, m = r["query"], r["method"]
+        if r["instance"] in common[(q, split_method(m)[0])]:
+            out[(q, m)].add(r)
+    return out
 
 
 # The inputs a time belongs to (the study's timing.csv): the uniform random family is generic

@@ -876,25 +876,30 @@ figcaption { max-width: 50em; font-size: 0.9em; } pre { font-size: 0.75em; overf
 .note { color: #555; font-size: 0.9em; }
 """
 
-SUMMARY_COLUMNS = (("method", "method"), ("kind", "kind"), ("n", "n"), ("FP", "false_positive"), ("FN", "false_negative"),
-                   ("class", "class_mismatch"), ("undecided", "undecided"), ("error", "error"), ("invalid", "invalid"),
-                   ("rate", "disagreement_rate"), ("3-val. rate", "three_valued_rate"), ("median ns", "median_ns"))
+SUMMARY_COLUMNS = ("method", "kind", "paired", "n", "FP", "FN", "class", "undecided", "error", "invalid", "rate", "3-val. rate",
+                   "median ns")
 
 
-def summary_cell(key, r, boolean):
-    """The cell of column `key` of the summary row r; the three-valued rate, (FP + FN + class) /
-    decided (cr.Errors), computed from the row's counts, a dash for a Boolean method."""
-    if key == "three_valued_rate":
-        if r["method"] in boolean:
-            return "--"
-        decided = int(r["n"]) - int(r["undecided"]) - int(r["error"]) - int(r["invalid"])
-        wrong3 = int(r["false_positive"]) + int(r["false_negative"]) + int(r["class_mismatch"])
-        return f"{wrong3 / decided:.2e}" if decided else f"{0.0:.2e}"
-    if key == "disagreement_rate":
-        return f"{fnum(r[key]):.2e}"
-    if key == "median_ns":
-        return f"{fnum(r[key]):.0f}"
-    return r[key]
+def summary_cells(method, kind, t, boolean):
+    """The cells of the summary row of `method` from its PairedTally t (cr.paired_by_algorithm):
+    the Boolean rate (FP + FN) / decided and the three-valued one (FP + FN + class) / decided (a
+    dash for a Boolean method, or when nothing was decided), and the median time, all on the
+    paired instances."""
+    e = t.errors
+    rate = f"{e.rate:.2e}" if e.decided else "--"
+    rate3 = "--" if method in boolean or not e.decided else f"{e.rate3:.2e}"
+    ns = "--" if not t.ns else f"{t.median_ns:.0f}"
+    return [method, kind, t.paired, t.n, e.fp, e.fn, e.cls, t.undecided, t.error, t.invalid, rate, rate3, ns]
+
+
+def uniform_cells(r):
+    """The cells of a row of uniform.csv: its counts and the Boolean and three-valued error in
+    percent with the 95% Wilson interval (a dash for a Boolean method)."""
+    e = cr.uniform_errors(r)
+    cell = (lambda three: f"{cr.percent_text(e.rate3 if three else e.rate)} "
+            f"[{cr.percent_text(e.interval(three)[0])}, {cr.percent_text(e.interval(three)[1])}]")
+    return [r["method"], r["kind"], e.decided, e.fp, e.fn, e.cls, int(r["undecided"]) + int(r["error"]) + int(r["invalid"]),
+            cell(False) if e.decided else "--", cell(True) if e.decided and not cr.uniform_boolean(r) else "--"]
 
 
 def k_cell(e, three_valued=False):
@@ -947,10 +952,11 @@ def write_error_by_k(out, by_k, boolean, kinds):
     return path
 
 
-def write_index(folder, out, summary, boolean=frozenset(), error_by_k_page=None):
-    """index.html: the summary table, then every figure written, each with its caption; links to
-    error_by_k_page (the errors per bin of k) when given. `boolean`: the methods whose
-    three-valued rate is undefined (cr.boolean_methods)."""
+def write_index(folder, out, summary, rows, boolean=frozenset(), error_by_k_page=None):
+    """index.html: the summary table (paired, from `rows` of instances.csv), the uniform sample,
+    then every figure written, each with its caption; links to error_by_k_page (the errors per
+    bin of k) when given. `boolean`: the methods whose three-valued rate is undefined
+    (cr.boolean_methods)."""
     path = os.path.join(folder, "index.html") if os.path.normpath(out) == os.path.normpath(os.path.join(folder, "figures")) \
         else os.path.join(out, "index.html")
     here = os.path.dirname(os.path.abspath(path))
@@ -972,35 +978,62 @@ def write_index(folder, out, summary, boolean=frozenset(), error_by_k_page=None)
              f"commit {machine['commit']}" if "commit" in machine else "", f"{machine['date']}" if "date" in machine else "",
              f"{machine['merged_shards']} shards merged" if "merged_shards" in machine else ""]
     html.append(f'<p class="note">{escape(", ".join(f for f in facts if f))}</p>')
-    html.append('<p>Contents: <a href="#summary">summary</a>, <a href="#figures">figures</a> (' +
+    html.append('<p>Contents: <a href="#summary">summary</a>, <a href="#uniform">uniform sample</a>, <a href="#figures">figures</a> (' +
                 ", ".join(f'<a href="#{escape(n, quote=True)}">{escape(n)}</a>' for n, _ in FIGURES) +
                 '), <a href="#files">files</a>.</p>')
 
     html.append('<h2 id="summary">Summary</h2>')
-    html.append("<p>One row per query and method (<code>summary.csv</code>): the instances judged (n), the answers that "
-                "disagree with the certified one (FP: says the sets meet, they are separated; FN: the reverse), touching and "
-                "overlapping confused (class), undecided answers, errors and invalid values (a reported value not finite), "
-                "the disagreement rate (FP + FN) / decided answers (the Boolean error), the three-valued error rate (FP + FN + "
-                "class) / decided answers (a dash for a Boolean method, which never answers touching or overlapping), and the "
-                "median time per query. Rows with a false positive or a false negative are shaded red, rows with class "
-                "mismatches only cyan. Each rate pools every instance of the query, and the study's design (k = 0 for one "
-                "instance in eight, otherwise |k| log-uniform up to 2^41 ulps off a degeneracy) sets how many fall inside a "
-                "method's precision band: the rate is a property of that design, not of the method alone.</p>")
+    html.append("<p>One row per query and method, each algorithm's number types <em>paired</em>: counted on the instances of "
+                "the query on which every number type of the algorithm ran (paired: how many; the slow number types run on a "
+                "pseudo-random share of each family only, so an unpaired comparison would judge them on other inputs), as the "
+                "paper's tables do. On those instances: the rows judged (n), the answers that disagree with the certified one "
+                "(FP: says the sets meet, they are separated; FN: the reverse), touching and overlapping confused (class), "
+                "undecided answers, errors and invalid values (a reported value not finite), the disagreement rate (FP + FN) / "
+                "decided answers (the Boolean error), the three-valued error rate (FP + FN + class) / decided answers (a dash "
+                "for a Boolean method, which never answers touching or overlapping), and the median time per call. Every "
+                "instance of every method is counted in <code>summary.csv</code>. Rows with a false positive or a false "
+                "negative are shaded red, rows with class mismatches only cyan. Each rate pools the query's hard-case families "
+                "and its few uniform instances, and the study's design (k = 0 for one instance in eight, otherwise |k| "
+                "log-uniform up to 2^41 ulps off a degeneracy) sets how many fall inside a method's precision band: the rate is "
+                "a property of that design, not of the method alone, and says nothing of typical input (the "
+                '<a href="#uniform">uniform sample</a> below does).</p>')
     if error_by_k_page:
         html.append(f'<p>The errors per bin of k, with 95% Wilson intervals, for every method with a wrong answer: '
                     f'<a href="{link(error_by_k_page)}">error_by_k.html</a> (figure <a href="#error_by_k">error_by_k</a>).</p>')
-    by_query = defaultdict(list)
-    for r in summary:
-        by_query[r["query"]].append(r)
-    order = [q for q in QUERY_TITLES if q in by_query] + sorted(set(by_query) - set(QUERY_TITLES))
-    numeric = ("n", "FP", "FN", "class", "undecided", "error", "invalid", "rate", "3-val. rate", "median ns")
+    tallies = cr.paired_by_algorithm(rows)
+    kinds = {r["method"]: r["kind"] for r in summary}
+    order = [q for q in QUERY_TITLES if any(k[0] == q for k in tallies)] + sorted({q for q, _ in tallies} - set(QUERY_TITLES))
+    numeric = ("paired", "n", "FP", "FN", "class", "undecided", "error", "invalid", "rate", "3-val. rate", "median ns")
     for q in order:
-        rows = by_query[q]
+        ms = sorted((m for qq, m in tallies if qq == q), key=lambda m: (cr.split_method(m)[0], m))
         html.append(f'<h3 id="summary-{escape(q, quote=True)}">{escape(q)} ({escape(QUERY_TITLES.get(q, q))})</h3>')
-        cells = [[summary_cell(key, r, boolean) for _, key in SUMMARY_COLUMNS] for r in rows]
-        classes = ["certified" if r["kind"] == "certified" else "wrong" if int(r["false_positive"]) + int(r["false_negative"])
-                   else "mismatch" if int(r["class_mismatch"]) else "" for r in rows]
-        html.append(cr.html_table([h for h, _ in SUMMARY_COLUMNS], cells, classes, numeric))
+        cells = [summary_cells(m, kinds.get(m, ""), tallies[(q, m)], boolean) for m in ms]
+        classes = ["certified" if kinds.get(m) == "certified" else "wrong" if tallies[(q, m)].errors.wrong
+                   else "mismatch" if tallies[(q, m)].errors.cls else "" for m in ms]
+        html.append(cr.html_table(list(SUMMARY_COLUMNS), cells, classes, numeric))
+
+    usample = cr.uniform_sample(folder)
+    html.append('<h2 id="uniform">Uniform sample: typical input</h2>')
+    if usample:
+        html.append("<p>The study's uniform sample (<code>uniform.csv</code>): per query, random instances drawn as the "
+                    "uniform family draws them (in [-2, 2]^3), each certified and answered by every method that runs on every "
+                    "instance (the slow number types, Gmpfr and CORE::Expr, are not in it). Decided answers, FP, FN and class "
+                    "mismatches, answers not decided (undecided, error or invalid), and the Boolean and three-valued error in "
+                    "percent with the 95% Wilson interval: the typical-case rates of this distribution.</p>")
+        header = ["method", "kind", "decided", "FP", "FN", "class", "not decided", "Boolean error %", "three-valued error %"]
+        by_q = defaultdict(list)
+        for r in usample:
+            by_q[r["query"]].append(r)
+        for q in [q for q in QUERY_TITLES if q in by_q] + sorted(set(by_q) - set(QUERY_TITLES)):
+            r0 = by_q[q][0]
+            html.append(f'<h3 id="uniform-{escape(q, quote=True)}">{escape(q)} ({escape(QUERY_TITLES.get(q, q))}): '
+                        f'{int(r0["instances"])} instances, certified {r0["separated"]} separated, {r0["touching"]} touching, '
+                        f'{r0["overlapping"]} overlapping, {r0["uncertified"]} undecided</h3>')
+            cells = [uniform_cells(r) for r in by_q[q]]
+            classes = ["wrong" if cr.uniform_errors(r).wrong else "mismatch" if cr.uniform_errors(r).cls else "" for r in by_q[q]]
+            html.append(cr.html_table(header, cells, classes, ("decided", "FP", "FN", "class", "not decided")))
+    else:
+        html.append("<p>This study has no uniform sample (its configuration leaves out the uniform family, or its size is 0).</p>")
     tpath = os.path.join(folder, "summary.txt")
     if os.path.exists(tpath):
         cr.note_read(tpath)
@@ -1021,7 +1054,8 @@ def write_index(folder, out, summary, boolean=frozenset(), error_by_k_page=None)
 
     html.append('<h2 id="files">Files</h2><ul>')
     for f, what in (("instances.csv", "one row per instance and method"), ("inputs.csv", "one row per instance, its input in hexfloats"),
-                    ("summary.csv", "the table above"), ("summary_families.csv", "the same per family"),
+                    ("summary.csv", "every instance of every method, per query (the table above counts the paired ones)"),
+                    ("summary_families.csv", "the same per family"), ("uniform.csv", "the uniform sample's counts per query and method"),
                     ("stages.csv", "how the certified cylinder-pair answers were decided"),
                     ("hunt.csv", "the worst input found per method"), ("machine.json", "compiler, flags, CPU, commit, options"),
                     ("manifest.json", "size, rows and SHA-256 of every data file"), ("Core_Diagnostics", "CORE::Expr's warnings")):
@@ -1078,7 +1112,7 @@ def main():
     t_error(rows, out)
     failure_maps(folder, out)
     page = write_error_by_k(out, by_k, boolean, {r["method"]: r["kind"] for r in rows})
-    write_index(folder, out, summary, boolean, page)
+    write_index(folder, out, summary, rows, boolean, page)
     cr.write_manifest("experiments/plot_study.py", folder, out, WRITTEN)
     print(f"figures written to {out}")
     return 0

@@ -19,6 +19,10 @@ Fails (exit status 1, one line per problem) when
     deciding stage of the certified cylinder pairs, inputs.csv's stage column);
   - a line of generated/tables/seeds_by_type.tex shows a paired count or FP/FN/class counts other
     than those recounted on the instances where every number type of the algorithm ran;
+  - a line of generated/tables/uniform_sample.tex shows decided answers, FP/FN/class or
+    undecided counts other than RESULTS_DIR/uniform.csv's for its query and method, or its line
+    of the other methods lists a method with a wrong answer, leaves one out or gives another
+    least decided count, or the table leaves out a query of uniform.csv;
   - paper.pdf is missing, older than a file it includes, or has an implausible page count
     (pdfinfo), or the LaTeX log reports undefined references or citations.
 """
@@ -38,13 +42,14 @@ from certcyl_results import K_BINS, k_bin, sha256  # noqa: E402
 # signed gap) and the results the timing tables: 31 pages at the time of writing; the limit
 # catches a runaway table or figure, not the proofs.
 MIN_PAGES, MAX_PAGES = 6, 36
-REQUIRED_INPUTS = ["instances.csv", "inputs.csv", "summary.csv", "summary_families.csv", "hunt.csv"]
+REQUIRED_INPUTS = ["instances.csv", "inputs.csv", "summary.csv", "summary_families.csv", "hunt.csv", "uniform.csv"]
 # What the results section must show: the errors per bin of k (findings on single rates).
 REQUIRED_INCLUDES = ["generated/tables/error_by_k.tex", "figures/error_by_k.pdf", "generated/tables/timing_certified.tex",
-                     "generated/tables/seeds_by_type.tex"]
+                     "generated/tables/seeds_by_type.tex", "generated/tables/uniform_sample.tex"]
 K_TABLE = "generated/tables/error_by_k.tex"
 TIMING_TABLE = "generated/tables/timing_certified.tex"
 SEEDS_TABLE = "generated/tables/seeds_by_type.tex"
+UNIFORM_TABLE = "generated/tables/uniform_sample.tex"
 WRONG = {"boolean": ("false_positive", "false_negative"), "three_valued": ("false_positive", "false_negative", "class_mismatch")}
 
 
@@ -163,6 +168,51 @@ def check_seeds_table(path, instances, problems):
         problems.append(f"{SEEDS_TABLE}: no line of counts")
 
 
+def check_uniform_table(path, uniform, problems):
+    """Every line after "% uniform: QUERY METHOD" shows that row of uniform.csv: decided, FP, FN,
+    class, and undecided + error + invalid; every line after "% uniform_quiet: QUERY METHOD..."
+    lists exactly the query's methods without a wrong answer or an undecided one and shows the
+    least decided count among them; every query of uniform.csv is in the table."""
+    rows = {(r["query"], r["method"]): r for r in cr.read_csv(uniform)}
+    with open(path) as f:
+        lines = f.read().splitlines()
+    seen = set()
+    for i, line in enumerate(lines):
+        m = re.match(r"^% uniform: (\S+) (\S+)$", line)
+        quiet = re.match(r"^% uniform_quiet: (\S+) (.*)$", line)
+        if not (m or quiet):
+            continue
+        cells = table_cells(lines[i + 1]) if i + 1 < len(lines) else []
+        if m:
+            q, method = m.groups()
+            seen.add(q)
+            r = rows.get((q, method))
+            if r is None:
+                problems.append(f"{UNIFORM_TABLE}: {q} {method} is not in uniform.csv")
+                continue
+            want = [r["decided"], r["false_positive"], r["false_negative"], r["class_mismatch"],
+                    str(int(r["undecided"]) + int(r["error"]) + int(r["invalid"]))]
+            if cells[2:7] != want:
+                problems.append(f"{UNIFORM_TABLE}: {q} {method}: shows {' '.join(cells[2:7])}, uniform.csv gives {' '.join(want)}")
+            continue
+        q, listed = quiet.group(1), quiet.group(2).split()
+        seen.add(q)
+        clean = sorted(k[1] for k, r in rows.items() if k[0] == q and cr.uniform_errors(r).wrong3 == 0
+                       and int(r["undecided"]) + int(r["error"]) + int(r["invalid"]) == 0)
+        if sorted(listed) != clean:
+            problems.append(f"{UNIFORM_TABLE}: {q}: the other methods are {' '.join(sorted(listed))}, uniform.csv gives {' '.join(clean)}")
+        least = min((int(rows[(q, m)]["decided"]) for m in listed if (q, m) in rows), default=0)
+        if cells[3:7] != ["0"] * 4:
+            problems.append(f"{UNIFORM_TABLE}: {q}: the other methods' line shows {' '.join(cells[3:7])} wrong or undecided, "
+                            f"uniform.csv gives 0 0 0 0")
+        if len(cells) < 3 or cells[2] != f"$\\ge${least}":
+            problems.append(f"{UNIFORM_TABLE}: {q}: the other methods' least decided count shows {cells[2] if len(cells) > 2 else ''}, "
+                            f"uniform.csv gives {least}")
+    missing = sorted({q for q, _ in rows} - seen)
+    if missing:
+        problems.append(f"{UNIFORM_TABLE}: leaves out the queries {' '.join(missing)} of uniform.csv")
+
+
 def included_files(tex):
     """Paths that the .tex includes: \\input{...} and \\includegraphics[...]{...}, comments removed."""
     text = "\n".join(re.sub(r"(?<!\\)%.*", "", line) for line in tex.splitlines())
@@ -195,6 +245,11 @@ def main():
         check_timing_table(os.path.join(out, TIMING_TABLE), os.path.join(res, "instances.csv"), os.path.join(res, "inputs.csv"), problems)
     if os.path.exists(os.path.join(out, SEEDS_TABLE)) and os.path.exists(os.path.join(res, "instances.csv")):
         check_seeds_table(os.path.join(out, SEEDS_TABLE), os.path.join(res, "instances.csv"), problems)
+    if os.path.exists(os.path.join(out, UNIFORM_TABLE)):
+        if os.path.exists(os.path.join(res, "uniform.csv")):
+            check_uniform_table(os.path.join(out, UNIFORM_TABLE), os.path.join(res, "uniform.csv"), problems)
+        else:
+            problems.append(f"{UNIFORM_TABLE}: {res} has no uniform.csv")
 
     # The manifests of the two generators, keyed by the subdirectory they describe.
     manifests = {}

@@ -4,7 +4,7 @@
     /usr/bin/python3 paper/make_tables.py RESULTS_DIR OUT_DIR
 
 Reads the study's CSV files (instances.csv, inputs.csv, summary.csv, summary_families.csv,
-hunt.csv, timing.csv, timing_stages.csv, timing_thread.csv, failure_maps/*.csv) and machine.json (the run's description: compiler, CPU,
+hunt.csv, timing.csv, timing_stages.csv, timing_thread.csv, uniform.csv, failure_maps/*.csv) and machine.json (the run's description: compiler, CPU,
 libraries), nothing else, and writes into OUT_DIR:
   numbers.tex     one \\newcommand per quoted number, named \\csname stat:KEY\\endcsname and
                   read in the text through \\stat{KEY} (paper.tex makes an unknown key an error)
@@ -94,6 +94,12 @@ def pct_rate(r):
     if r is None or (isinstance(r, float) and math.isnan(r)):
         return "--"
     return cr.percent_text(r)
+
+
+def wilson_pct(k, n):
+    """The 95% Wilson interval of k wrong in n decided, in percent: "0.41--0.52"."""
+    lo, hi = cr.error_interval(k, n)
+    return f"{cr.percent_text(lo)}--{cr.percent_text(hi)}"
 
 
 def method_tex(m):
@@ -273,13 +279,6 @@ def main():
         N[f"inst:answer:{a}"] = str(answers.get(a, 0))
     N["inst:atdegeneracy"] = str(sum(r["k_ulps"] in ("0", "0.0") and r["family"] != "uniform" for r in inputs))
     N["inst:uniform"] = str(sum(r["family"] == "uniform" for r in inputs))
-    # The fewest uniform random instances of a query, and what a method without an error on them
-    # is shown of typical input: its error rate below the 95% Wilson upper bound of 0 in that many.
-    uni_q = Counter(r["query"] for r in inputs if r["family"] == "uniform")
-    if uni_q:
-        n_uni = min(uni_q.values())
-        N["uniform:perquery"] = str(n_uni)
-        N["uniform:zerobound"] = f"{cr.percent_text(cr.error_interval(0, n_uni)[1])}\\,\\%"
     maxk = max((abs(int(float(r["k_ulps"]))) for r in inputs if r["k_ulps"] not in ("",)), default=0)
     N["inst:maxk"] = sci(float(maxk))
 
@@ -438,18 +437,92 @@ def main():
     N["clsexact:families"] = families_text(len(items))
     N["clsexact:list"] = "; ".join(items) or "none"
     N["clsexact:aswritten"] = families_text(as_written)
-    # Uniform inputs alone: every method with a disagreement there.
-    uni = defaultdict(lambda: [0, 0, 0])
-    for r in families:
-        if r["family"] == "uniform":
-            u = uni[r["method"]]
-            u[0] += int(r["n"])
-            u[1] += int(r["false_positive"])
-            u[2] += int(r["false_negative"])
-    uni_bad = sorted((m, v) for m, v in uni.items() if v[1] + v[2] > 0)
-    N["uniform:methodswrong"] = str(len(uni_bad))
-    N["uniform:methods"] = str(len(uni))
-    N["uniform:list"] = ", ".join(f"{method_tex(m)} ({v[1]}\\,FP, {v[2]}\\,FN of {v[0]})" for m, v in uni_bad) or "none"
+    # ---- The uniform sample (uniform.csv): typical-case error rates ----
+    # Per query and method, the counts of the study's uniform sample (far more instances than the
+    # uniform family of instances.csv); the rates with their 95% Wilson intervals. The table shows
+    # every method with a wrong answer (Boolean or three-valued) or without a decided answer on
+    # some instance, each line after a comment "% uniform: QUERY METHOD", then per query one line
+    # for the others after "% uniform_quiet: QUERY METHOD...", by which paper/check_paper.py
+    # recounts it from uniform.csv.
+    usample = cr.uniform_sample(res)
+    uq = defaultdict(list)
+    for r in usample:
+        uq[r["query"]].append(r)
+    certified_n = {q: int(rs[0]["instances"]) - int(rs[0]["uncertified"]) for q, rs in uq.items()}
+    n_uni = min(certified_n.values()) if certified_n else 0
+    N["uniform:perquery"] = f"{n_uni:,}".replace(",", "\\,")
+    N["uniform:zerobound"] = f"{cr.percent_text(cr.error_interval(0, n_uni)[1])}\\,\\%" if n_uni else "--"
+    N["uniform:queries"] = str(len(uq))
+    N["uniform:methods"] = str(len(usample))
+    for q, rs in uq.items():
+        r0 = rs[0]
+        N[f"uniform:{q}:n"] = str(certified_n[q])
+        for a in ("separated", "touching", "overlapping", "uncertified"):
+            N[f"uniform:{q}:{a}"] = str(int(r0[a]))
+    # The peers' Boolean rates, pooled over their queries' rows, per method; every other number per
+    # query and method.
+    uwrong = []
+    for r in usample:
+        e, q, m = cr.uniform_errors(r), r["query"], r["method"]
+        boolean = cr.uniform_boolean(r)
+        N[f"udecided:{q}:{m}"] = str(e.decided)
+        N[f"ufp:{q}:{m}"] = str(e.fp)
+        N[f"ufn:{q}:{m}"] = str(e.fn)
+        N[f"ucls:{q}:{m}"] = str(e.cls)
+        if e.decided:
+            N[f"urate:{q}:{m}"] = f"{cr.percent_text(e.rate)}\\,\\%"
+            N[f"uci:{q}:{m}"] = wilson_pct(e.wrong, e.decided) + "\\,\\%"
+            if not boolean:
+                N[f"urate3:{q}:{m}"] = f"{cr.percent_text(e.rate3)}\\,\\%"
+                N[f"uci3:{q}:{m}"] = wilson_pct(e.wrong3, e.decided) + "\\,\\%"
+        if e.wrong3 or int(r["undecided"]) + int(r["error"]) + int(r["invalid"]):
+            uwrong.append(r)
+    bad = [r for r in uwrong if cr.uniform_errors(r).wrong3]
+    N["uniform:methodswrong"] = str(len({r["method"] for r in bad}))
+    N["uniform:methodsall"] = str(len({r["method"] for r in usample}))
+    N["uniform:rowswrong"] = str(len(bad))
+    lines = ["% Generated by paper/make_tables.py: do not edit.",
+             "\\begin{tabular}{@{}llrrrrrll@{}}", "\\toprule",
+             "query & method & decided & FP & FN & class & undec. & Boolean error & three-valued\\\\", "\\midrule"]
+    shown_q = 0
+    for q in QUERY_TEX:
+        rs = uq.get(q)
+        if not rs:
+            continue
+        if shown_q:
+            lines.append("\\midrule")
+        shown_q += 1
+        first = True
+        noisy = [r for r in rs if r in uwrong]
+        noisy.sort(key=lambda r: (-cr.uniform_errors(r).wrong3, r["method"]))
+        for r in noisy:
+            e = cr.uniform_errors(r)
+            lo, hi = e.interval()
+            cell = f"{cr.percent_text(e.rate)} ({cr.percent_text(lo)}--{cr.percent_text(hi)})" if e.decided else "--"
+            if cr.uniform_boolean(r) or not e.decided:
+                cell3 = "--"
+            else:
+                lo3, hi3 = e.interval(True)
+                cell3 = f"{cr.percent_text(e.rate3)} ({cr.percent_text(lo3)}--{cr.percent_text(hi3)})"
+            notdecided = int(r["undecided"]) + int(r["error"]) + int(r["invalid"])
+            lines.append(f"% uniform: {q} {r['method']}")
+            lines.append(f"{QUERY_TEX[q] + f' ({certified_n[q]})' if first else ''} & {method_tex(r['method'])} & {e.decided} & {e.fp} & {e.fn} & "
+                         f"{e.cls} & {notdecided} & {cell} & {cell3}\\\\")
+            first = False
+        quiet = [r for r in rs if r not in uwrong]
+        if quiet:
+            least = min(cr.uniform_errors(r).decided for r in quiet)
+            bound = cr.percent_text(cr.error_interval(0, least)[1]) if least else "--"
+            lines.append(f"% uniform_quiet: {q} " + " ".join(r["method"] for r in quiet))
+            lines.append(f"{QUERY_TEX[q] + f' ({certified_n[q]})' if first else ''} & \\emph{{{len(quiet)} other methods}} & "
+                         f"$\\ge${least} & 0 & 0 & 0 & 0 & 0 ($<${bound}) & \\\\")
+    if not shown_q:
+        lines.append("\\multicolumn{9}{@{}l}{no uniform sample in this study}\\\\")
+    lines += ["\\bottomrule", "\\end{tabular}"]
+    write(out, "tables/uniform_sample.tex", "\n".join(lines) + "\n")
+    # Methods without a wrong answer on the sample, per query, for the text.
+    for q, rs in uq.items():
+        N[f"uniform:{q}:quiet"] = str(sum(1 for r in rs if not cr.uniform_errors(r).wrong3))
 
     # ---- The seeds in every number type, paired ----
     # The slow number types run on a pseudo-random subset of each family (the study's stride), so
@@ -693,10 +766,6 @@ def main():
     def k_words(b):
         lo, hi = cr.K_BINS[b]
         return "$k=0$" if lo is None else (f"$|k|\\ge2^{{{lo}}}$" if hi is None else f"$2^{{{lo}}}\\le|k|<2^{{{hi}}}$")
-
-    def wilson_pct(k, n):
-        lo, hi = cr.error_interval(k, n)
-        return f"{cr.percent_text(lo)}--{cr.percent_text(hi)}"
 
     lines = ["% Generated by paper/make_tables.py: do not edit.",
              "\\begin{tabular}{@{}ll" + "r" * (nb + 1) + "@{}}", "\\toprule",

@@ -159,7 +159,7 @@ int main(int argc, char** argv) {
       "figures/) and prints the summary table. Sizes: tiny (seconds), small, default (minutes), large.");
   study->add_option("--name", study_options.name, "Results folder name under --out (default: the size)");
   study->add_option("--out", study_options.out_root, "Results root (default: results)");
-  study->add_option("--config", study_options.config_file, "JSON configuration (per_family, map_cells, map_step, hunt_evaluations, methods, families, size, seed, name)");
+  study->add_option("--config", study_options.config_file, "JSON configuration (per_family, map_cells, map_step, hunt_evaluations, uniform_per_query, methods, families, size, seed, name)");
   study->add_option("--size", study_options.size, "tiny, small, default, large, or instances per family and query");
   study->add_option("--seed", study_options.seed, "Random seed (default 1)")
       ->check(CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 0, UINT64_MAX); }, "UINT64"));

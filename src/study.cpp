@@ -7,6 +7,8 @@
 //   instances.csv         one row per instance and method (tidy)
 //   inputs.csv            one row per instance: its certified answer, gap, (cylinder pairs)
 //                         the stage that decided it, and its hexfloat input
+//   uniform.csv           the uniform sample: per query and method, its error counts on
+//                         uniform_per_query random instances (study_uniform.cpp)
 //   summary.txt/.csv      the disagreement table per method and query (and per family in
 //                         summary_families.csv)
 //   stages.csv            per family, the stages that decided the certified cylinder pairs
@@ -81,6 +83,7 @@ int run_study(StudyOptions o, std::ostream& out) {
   for (const auto& r : rows) row_count += r.size();
   check_lines(work / "instances.csv", row_count + 1);
   check_lines(work / "inputs.csv", plan.size() + 1);
+  run_uniform_sample(o, registry, work);
   if (o.map_cells > 0 && o.shard_index == 0) run_failure_maps(o, registry, work);
   if (o.hunt_evaluations > 0) run_hunt(o, registry, work);
   write_whole(work / "machine.json", machine_json(o, peers).dump(2) + '\n');

@@ -25,6 +25,7 @@ struct StudyOptions {
   int map_cells = 0;                 // failure maps are map_cells x map_cells
   long map_step = 1;                 // ulps between neighbouring cells
   long hunt_evaluations = 0;         // per method
+  long uniform_per_query = -1;       // the uniform sample's instances per query (study_uniform.cpp); -1: from the size
   std::vector<std::string> methods;  // substrings of method names to keep (empty: all)
   std::vector<std::string> families; // family names to keep (empty: all)
 };

@@ -5,6 +5,7 @@
 //   study_instances.cpp  every method on every instance: answers, then timing on one pinned thread;
 //                        instances.csv, inputs.csv, timing_thread.csv
 //   study_child.cpp      the serial methods' calls in a child process (CORE::Expr may end it)
+//   study_uniform.cpp    the uniform sample: typical-case error counts per query and method (uniform.csv)
 //   study_maps.cpp       the failure maps (failure_maps/)
 //   study_hunt.cpp       the worst-input hunt (hunt.csv)
 //   study_machine.cpp    the build and machine facts (machine.json)
@@ -177,6 +178,22 @@ std::vector<std::vector<Row>> run_instances(const StudyOptions& o, const study::
 void write_instances(const fs::path& dir, const std::vector<Planned>& plan, const std::vector<std::vector<Row>>& rows);
 
 // ---- The other stages ------------------------------------------------------------------------
+
+// The uniform sample (study_uniform.cpp): uniform.csv in dir, this shard's share of
+// o.uniform_per_query instances per query, counted per method; merge_uniform adds the shards'
+// rows into dir/uniform.csv (throws std::runtime_error naming the shard when a file is missing,
+// malformed or has other rows than the first shard's). in_uniform_sample: whether a method takes
+// part (it runs on every instance: stride 1, not CORE::Expr; kept by the method filter).
+extern const char* const kUniformHeader;  // uniform.csv
+bool in_uniform_sample(const study::Method& m, const StudyOptions& o);
+// Instance i of the uniform sample of query q: drawn as the uniform family draws, from its own
+// stream of the seed (mix of the seed, "uniform_sample", the query and i), so not one of the
+// uniform family's instances in instances.csv.
+std::vector<double> uniform_sample_input(std::uint64_t seed, study::Query q, long i);
+void run_uniform_sample(const StudyOptions& o, const study::Registry& registry, const fs::path& dir);
+void merge_uniform(const std::vector<fs::path>& shards, const fs::path& dir);
+// The table of dir/uniform.csv for summary.txt ("" when the folder has none).
+std::string uniform_table(const fs::path& dir);
 
 // failure_maps/ in dir (study_maps.cpp).
 void run_failure_maps(const StudyOptions& o, const study::Registry& registry, const fs::path& dir);

@@ -56,7 +56,7 @@ nlohmann::ordered_json machine_json(const StudyOptions& o, const std::vector<std
   j["peers"] = peers;
   j["options"] = {{"name", o.name}, {"size", o.size}, {"seed", o.seed}, {"threads", o.threads},
                   {"per_family", o.per_family}, {"map_cells", o.map_cells}, {"map_step", o.map_step},
-                  {"hunt_evaluations", o.hunt_evaluations}, {"shard", std::to_string(o.shard_index) + "/" + std::to_string(o.shard_count)},
+                  {"hunt_evaluations", o.hunt_evaluations}, {"uniform_per_query", o.uniform_per_query}, {"shard", std::to_string(o.shard_index) + "/" + std::to_string(o.shard_count)},
                   {"methods", o.methods}, {"families", o.families}};
   const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   char date[64];

@@ -167,6 +167,7 @@ int run_merge(const std::string& dir_name, bool plots, std::ostream& out) {
     machine["options"]["shard"] = "merged";
     write_whole(dir / "machine.json", machine.dump(2) + '\n');
   }
+  merge_uniform(shards, dir);
   out << write_summary(dir);
   write_manifest(dir);
   out << "merged " << shards.size() << " shards into " << dir.string() << '\n';

@@ -17,6 +17,7 @@ using namespace certcyl::study;
 // The ranges of the configuration (experiments/STUDY.md, "Configuration").
 constexpr long kMaxPerFamily = 10000000;
 constexpr long kMaxHuntEvaluations = 100000000;
+constexpr long kMaxUniformPerQuery = 100000000;
 constexpr int kMaxMapCells = 1024;
 constexpr long kMaxMapStep = 1000000000;
 constexpr unsigned long long kMaxShards = 100000;
@@ -112,13 +113,18 @@ void apply_size(StudyOptions& o) {
     long per_family;
     int map_cells;
     long hunt;
+    long uniform;
   };
-  const Preset presets[] = {{"tiny", 3, 16, 20}, {"small", 12, 64, 150}, {"default", 96, 256, 1000}, {"large", 400, 256, 5000}};
+  const Preset presets[] = {{"tiny", 3, 16, 20, 200},
+                            {"small", 12, 64, 150, 5000},
+                            {"default", 96, 256, 1000, 100000},
+                            {"large", 400, 256, 5000, 1000000}};
   for (const Preset& p : presets) {
     if (o.size == p.name) {
       if (o.per_family == 0) o.per_family = p.per_family;
       if (o.map_cells == 0) o.map_cells = p.map_cells;
       if (o.hunt_evaluations == 0) o.hunt_evaluations = p.hunt;
+      if (o.uniform_per_query < 0) o.uniform_per_query = p.uniform;
       return;
     }
   }
@@ -130,6 +136,7 @@ void apply_size(StudyOptions& o) {
   if (o.per_family == 0) o.per_family = count;
   if (o.map_cells == 0) o.map_cells = 256;
   if (o.hunt_evaluations == 0) o.hunt_evaluations = std::min(kMaxHuntEvaluations, std::max(20L, 12 * count));
+  if (o.uniform_per_query < 0) o.uniform_per_query = std::min(kMaxUniformPerQuery, 1000 * count);
 }
 
 // The file's keys, each checked; --size, --seed and --name given on the command line win over its
@@ -158,12 +165,13 @@ void apply_config(StudyOptions& o) {
     else if (key == "map_cells") o.map_cells = json_integer<int>(value, k, 2, kMaxMapCells);
     else if (key == "map_step") o.map_step = json_integer<long>(value, k, 1, kMaxMapStep);
     else if (key == "hunt_evaluations") o.hunt_evaluations = json_integer<long>(value, k, 1, kMaxHuntEvaluations);
+    else if (key == "uniform_per_query") o.uniform_per_query = json_integer<long>(value, k, 0, kMaxUniformPerQuery);
     else if (key == "methods") o.methods = json_strings(value, k);
     else if (key == "families") o.families = json_strings(value, k);
     else if (key == "size") o.size = value.is_number() ? std::to_string(json_integer<long>(value, k, 1, kMaxPerFamily)) : json_string(value, k);
     else if (key == "seed") o.seed = json_integer<std::uint64_t>(value, k, 0, std::numeric_limits<std::uint64_t>::max());
     else if (key == "name") check_folder_name(o.name = json_string(value, k), k);
-    else throw std::invalid_argument("--config: unknown key '" + key + "' (per_family, map_cells, map_step, hunt_evaluations, methods, families, size, seed, name)");
+    else throw std::invalid_argument("--config: unknown key '" + key + "' (per_family, map_cells, map_step, hunt_evaluations, uniform_per_query, methods, families, size, seed, name)");
   }
   if (o.size_given) o.size = command_line.size;
   if (o.seed_given) o.seed = command_line.seed;

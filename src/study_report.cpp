@@ -4,7 +4,7 @@
 // family and per deciding stage of the certified cylinder pairs, generic and near-degenerate
 // inputs apart (timing.csv, timing_families.csv, timing_stages.csv), the stages that decided the
 // certified cylinder pairs (stages.csv, study_stages.cpp), the count of CORE::Expr's warnings
-// (Core_Diagnostics), and the figures with index.html, the page that presents the summary and the
+// (Core_Diagnostics), the uniform sample's table (uniform.csv, study_uniform.cpp), and the figures with index.html, the page that presents the summary and the
 // figures (experiments/plot_study.py).
 #include <algorithm>
 #include <cmath>
@@ -319,8 +319,8 @@ std::string write_summary(const fs::path& dir) {
     }
   }
   const Checks c = checks_from_inputs(dir / "inputs.csv");
-  const std::string table = summary_table(by_method, boolean, c) + cause_table(by_method_query) + core_diagnostics(dir) + '\n' +
-                            write_stages(dir) + write_timing(dir, rows);
+  const std::string table = summary_table(by_method, boolean, c) + cause_table(by_method_query) + core_diagnostics(dir) + uniform_table(dir) +
+                            '\n' + write_stages(dir) + write_timing(dir, rows);
   // The three-valued rate's field: empty for a Boolean method.
   const auto rate3 = [&boolean](const Tally& t, const std::string& method) { return boolean.count(method) ? std::string() : num(t.rate3()); };
   write_whole(dir / "summary.txt", table);

@@ -124,7 +124,7 @@ BOOST_AUTO_TEST_CASE(type_errors_name_their_key) {
   BOOST_TEST(config_error(R"({"name": null})") == "--config: name: expected a string, got null");
   BOOST_TEST(config_error(R"([1, 2])") == "--config: expected a JSON object, got array");
   BOOST_TEST(config_error(R"({"per_famliy": 3})") ==
-             "--config: unknown key 'per_famliy' (per_family, map_cells, map_step, hunt_evaluations, methods, families, size, seed, name)");
+             "--config: unknown key 'per_famliy' (per_family, map_cells, map_step, hunt_evaluations, uniform_per_query, methods, families, size, seed, name)");
 }
 
 BOOST_AUTO_TEST_CASE(name_stays_inside_out) {

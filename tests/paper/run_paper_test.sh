@@ -5,7 +5,7 @@
 # rejects a paper whose figure is missing, one without the table of errors against k, one whose
 # table of errors against k shows a count other than instances.csv's, and one whose figures are
 # stale, and one whose timing table or paired table of the seeds shows a count other than
-# instances.csv's.
+# instances.csv's, or whose table of the uniform sample shows a count other than uniform.csv's.
 #   run_paper_test.sh CERTCYL_BINARY SOURCE_DIR WORK_DIR
 set -euo pipefail
 certcyl=$1
@@ -74,14 +74,17 @@ json.dump(man, open(gen + "/manifest.json", "w"), indent=1, sort_keys=True)
 PY2
   touch "$1/paper.pdf"
 }
-for t in "timing_certified.tex:% timing: " "seeds_by_type.tex:% paired: "; do
+for t in "timing_certified.tex:% timing: :instances.csv" "seeds_by_type.tex:% paired: :instances.csv" \
+         "uniform_sample.tex:% uniform: :uniform.csv"; do
   table=${t%%:*}
+  source_file=${t##*:}
+  t=${t%:*}
   cp -a "$work/paper" "$work/tamper"
   tamper "$work/tamper" "$table" "${t#*:}"
   if check "$work/tamper" "$work/tiny" > "$work/tamper.log"; then
     echo "FAILED: a wrong count in $table was accepted"; exit 1
   fi
-  grep -q "^check_paper: generated/tables/$table: .* instances.csv gives" "$work/tamper.log" \
+  grep -q "^check_paper: generated/tables/$table: .* $source_file gives" "$work/tamper.log" \
     || { cat "$work/tamper.log"; echo "FAILED: no report of the wrong count in $table"; exit 1; }
   rm -rf "$work/tamper"
 done
@@ -98,4 +101,4 @@ grep -q "^check_paper: figures: stale" "$work/stale.log" || { cat "$work/stale.l
 if grep -q "^check_paper: generated: stale" "$work/stale.log"; then
   cat "$work/stale.log"; echo "FAILED: the regenerated tables were reported stale"; exit 1
 fi
-echo "paper test: built, checked, and the checker rejects a missing and a stale figure, a paper without the errors against k, and a wrong count in their table, the timing table or the paired table"
+echo "paper test: built, checked, and the checker rejects a missing and a stale figure, a paper without the errors against k, and a wrong count in their table, the timing table, the paired table or the uniform sample's table"

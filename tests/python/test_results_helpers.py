@@ -97,6 +97,37 @@ common, pts = cr.paired_speed_error(prs, "q", ["a/double", "a/core_expr"])
 check("paired_speed_error instances", common, {"2", "4", "6"})
 check("paired_speed_error double", pts["a/double"], (4.0, 0.0, 3))  # times 2, 4, 6: median 4, not that of 1..8
 check("paired_speed_error core", pts["a/core_expr"], (1000.0, 1 / 3, 3))
+# Paired per algorithm (the index page's summary): a's number types on instances 2, 4, 6 only; r's
+# a/double alone keeps its instance; b (one number type) all of its instances.
+pa = cr.paired_by_algorithm(prs + [row("q", "b/double", i, outcome="false_negative" if i == 1 else "agree") for i in (1, 3)])
+check("paired_by_algorithm: a/double", (pa[("q", "a/double")].paired, pa[("q", "a/double")].n, pa[("q", "a/double")].median_ns), (3, 3, 4.0))
+check("paired_by_algorithm: a/core_expr", (pa[("q", "a/core_expr")].errors.fp, pa[("q", "a/core_expr")].errors.decided), (1, 3))
+check("paired_by_algorithm: r", (pa[("r", "a/double")].paired, pa[("r", "a/double")].n), (1, 1))
+check("paired_by_algorithm: b", (pa[("q", "b/double")].paired, pa[("q", "b/double")].errors.fn), (2, 1))
+
+# Wilson intervals against published values (95%): 0 of 10 is [0, 0.2775], 1 of 10 [0.0179,
+# 0.4042]; 0 of n has the upper end z^2 / (n + z^2), z^2 = 3.8415, so 0 of 100,000 is below 3.84e-5.
+lo, hi = cr.error_interval(0, 10)
+check("Wilson 0 of 10", (lo, round(hi, 4)), (0.0, 0.2775))
+lo, hi = cr.wilson(1, 10)
+check("Wilson 1 of 10", (round(lo, 4), round(hi, 4)), (0.0179, 0.4042))
+lo, hi = cr.error_interval(0, 100000)
+check("Wilson 0 of 100000", (lo, round(hi * 1e5, 3)), (0.0, 3.841))
+# 50 of 100,000: p = 5e-4, centre (p + z^2/2n) / (1 + z^2/n), half-width z / (1 + z^2/n) *
+# sqrt(p(1-p)/n + z^2/4n^2): [3.79e-4, 6.59e-4] to three digits.
+lo, hi = cr.wilson(50, 100000)
+check("Wilson 50 of 100000", (round(lo * 1e4, 2), round(hi * 1e4, 2)), (3.79, 6.59))
+
+# A row of uniform.csv: its counts make the Errors; a method with `intersecting` answers is Boolean.
+urow = {"query": "line_cylinder", "method": "m/double", "kind": "robust", "instances": "1000", "separated": "600", "touching": "0",
+        "overlapping": "399", "uncertified": "1", "decided": "990", "false_positive": "7", "false_negative": "3",
+        "class_mismatch": "2", "undecided": "5", "error": "3", "invalid": "1", "intersecting": "0"}
+ue = cr.uniform_errors(urow)
+check("uniform_errors", (ue.decided, ue.wrong, ue.wrong3), (990, 10, 12))
+check("uniform_errors interval", ue.interval(), cr.wilson(10, 990))
+check("uniform three-valued", cr.uniform_boolean(urow), False)
+check("uniform Boolean", cr.uniform_boolean(dict(urow, intersecting="400")), True)
+
 # Times: nearest-rank percentiles and the mean summed left to right.
 check("time_stats", cr.time_stats([5.0, 1.0, 3.0, 2.0, 4.0]), (5, 1.0, 3.0, 5.0, 3.0, 5.0))
 check("time_stats of nothing", cr.time_stats([]), None)

@@ -9,7 +9,11 @@ Fails (exit status 1, one line per problem) when
   - a PNG figure of RESULTS_DIR/figures/ is not shown on the page (<img>) with a caption, or a
     figure is larger than a page (8.5 x 11 inches at the DPI recorded in the PNG);
   - the page does not open on the summary table (a table before the first image), or the
-    table's rows are not the rows of summary.csv (query and method);
+    table's rows are not the rows of summary.csv (query and method), or a row's paired count and
+    n are not those recounted here from instances.csv (the instances of the query on which every
+    number type of the method's algorithm ran, and the method's certified rows among them);
+  - the uniform sample's tables do not show exactly the rows of uniform.csv (query and method)
+    with its decided, FP, FN and class counts;
   - the screenshot (the page in a tall window) is blank (almost only one colour), its top (a
     window's height) lacks the shading of a summary row with a wrong answer, or the rest shows no
     figure (no pixel of the heat maps' darkest red, of matplotlib's first line colour or of the
@@ -27,8 +31,11 @@ class Page(HTMLParser):
     def __init__(self):
         super().__init__()
         self.events = []  # ("table" | "img" | "script" | ..., attrs), in document order
-        self.rows = []  # (query section, first cell) of every table body row
+        self.rows = []  # (query section, first cell) of every summary table body row
+        self.cells = {}  # (query section, first cell) -> every cell of the row
+        self.uniform = {}  # (query, method) -> every cell of a row of the uniform sample's tables
         self.section = None
+        self.kind = None
         self.captions = []
         self._cell = None
         self._in_tbody = False
@@ -38,15 +45,18 @@ class Page(HTMLParser):
     def handle_starttag(self, tag, attrs):
         a = dict(attrs)
         self.events.append((tag, a))
-        if tag == "h3" and a.get("id", "").startswith("summary-"):
-            self.section = a["id"][len("summary-"):]
+        if tag == "h3":
+            hid = a.get("id", "")
+            self.kind, _, self.section = hid.partition("-") if hid.startswith(("summary-", "uniform-")) else (None, "", None)
         elif tag == "tbody":
             self._in_tbody = True
         elif tag == "tr" and self._in_tbody:
             self._cell = 0
             self._text = []
+            self._row = []
         elif tag == "td" and self._cell is not None:
             self._cell += 1
+            self._row.append("")
         elif tag == "figcaption":
             self._in_caption = True
             self._text = []
@@ -55,7 +65,12 @@ class Page(HTMLParser):
         if tag == "tbody":
             self._in_tbody = False
         elif tag == "tr" and self._cell is not None:
-            self.rows.append((self.section, "".join(self._text).strip()))
+            key = (self.section, "".join(self._text).strip())
+            if self.kind == "summary":
+                self.rows.append(key)
+                self.cells[key] = [c.strip() for c in self._row]
+            elif self.kind == "uniform":
+                self.uniform[key] = [c.strip() for c in self._row]
             self._cell = None
         elif tag == "figcaption":
             self.captions.append("".join(self._text).strip())
@@ -64,6 +79,8 @@ class Page(HTMLParser):
     def handle_data(self, data):
         if (self._cell == 1) or self._in_caption:
             self._text.append(data)
+        if self._cell:
+            self._row[-1] += data
 
 
 def png_size_dpi(path):
@@ -180,6 +197,38 @@ def main():
         missing = sorted(set(expected) - set(shown))[:3]
         extra = sorted(set(shown) - set(expected))[:3]
         problems.append(f"summary table: {len(shown)} rows for {len(expected)} in summary.csv (missing {missing}, unexpected {extra})")
+
+    # Paired counts, recounted: per query and algorithm (the method's name before "/"), the
+    # instances every one of its methods ran on; n: the method's certified rows among them.
+    ran = {}
+    with open(os.path.join(folder, "instances.csv"), newline="") as f:
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        ran.setdefault((r["query"], r["method"]), set()).add(r["instance"])
+    common = {}
+    for (q, m), ids in ran.items():
+        key = (q, m.split("/")[0])
+        common[key] = ids if key not in common else common[key] & ids
+    n_on = {}
+    for r in rows:
+        if r["outcome"] != "uncertified" and r["instance"] in common[(r["query"], r["method"].split("/")[0])]:
+            n_on[(r["query"], r["method"])] = n_on.get((r["query"], r["method"]), 0) + 1
+    for (q, m), cells in page.cells.items():
+        want = [str(len(common.get((q, m.split("/")[0]), ()))), str(n_on.get((q, m), 0))]
+        if cells[2:4] != want:
+            problems.append(f"summary table: {q} {m}: paired and n show {' '.join(cells[2:4])}, instances.csv gives {' '.join(want)}")
+    upath = os.path.join(folder, "uniform.csv")
+    uniform = {}
+    if os.path.exists(upath):
+        with open(upath, newline="") as f:
+            uniform = {(r["query"], r["method"]): r for r in csv.DictReader(f)}
+    if sorted(page.uniform) != sorted(uniform):
+        problems.append(f"uniform sample: {len(page.uniform)} rows shown for {len(uniform)} in uniform.csv")
+    for key, cells in page.uniform.items():
+        r = uniform.get(key)
+        want = [r[c] for c in ("decided", "false_positive", "false_negative", "class_mismatch")] if r else []
+        if r and cells[2:6] != want:
+            problems.append(f"uniform sample: {key[0]} {key[1]}: shows {' '.join(cells[2:6])}, uniform.csv gives {' '.join(want)}")
 
     check_screenshot(shot, problems)
 
