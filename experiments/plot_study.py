@@ -386,7 +386,8 @@ def pareto(rows, summary, out, judged=()):
          "and only those are named. A rate pools every instance of the query, so it depends on the study's sampling "
          "design (k = 0 for one instance in eight, otherwise |k| log-uniform up to 2^41 ulps off a degeneracy): a point's "
          "height is the share of that design inside the method's precision band (error_by_k shows the error per k); the rate "
-         "is the Boolean one, FP + FN, class mismatches aside." + judged_caption(judged),
+         "is the Boolean one, FP + FN, class mismatches aside. It says nothing of typical input: the uniform sample's rates, "
+         "with their Wilson intervals, are in the table of that name on this page." + judged_caption(judged),
          rect=(0, 0.05 + lift, 1, 1))
 
 
@@ -451,7 +452,8 @@ def pareto_compact(rows, summary, out, judged=()):
          "The same speed against error without the sweeps and the extra MPFR precisions: colour is the algorithm, marker the "
          "number type (hollow: a peer library's variant), so the cost of each number type reads along a colour; each panel on "
          "the instances where every method it shows ran (their count in its title). As on "
-         "pareto, the rate (Boolean, FP + FN) depends on the study's sampling design of k (error_by_k)."
+         "pareto, the rate (Boolean, FP + FN) depends on the study's sampling design of k (error_by_k); typical-case rates "
+         "come from the uniform sample alone."
          + judged_caption(judged),
          rect=(0, 0.1 + lift, 1, 1), dpi=150)
 

@@ -117,7 +117,7 @@ void apply_size(StudyOptions& o) {
   };
   const Preset presets[] = {{"tiny", 3, 16, 20, 200},
                             {"small", 12, 64, 150, 5000},
-                            {"default", 96, 256, 1000, 100000},
+                            {"default", 96, 128, 250, 100000},
                             {"large", 400, 256, 5000, 1000000}};
   for (const Preset& p : presets) {
     if (o.size == p.name) {

@@ -3,7 +3,7 @@
 // For every query, o.uniform_per_query instances drawn as the `uniform` family draws them
 // (study/families.hpp: random lines, rays, segments, triangles and cylinders in [-2, 2]^3), instance
 // i from the seed, the query and i alone (so any shard draws the same ones; shard s of n takes the
-// i with i mod n = s). Each is certified (study::certified_answer: the certified query's answer,
+// i with i mod n = s). Each is certified (uniform_certified_answer: the certified query's answer,
 // no gap) and answered by every selected method of its query that runs on every instance of the
 // study (Method::stride 1: double, long double, Interval_nt, the sweeps, the robust method, the
 // peers). The slow number types (Gmpfr, CORE::Expr), which the study runs on a share of each
@@ -24,8 +24,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "certcyl/certified/cylinder_cylinder.hpp"
+#include "certcyl/certified/line_cylinder.hpp"
+#include "certcyl/certified/triangle_cylinder.hpp"
 #include "study/families.hpp"
-#include "study/gap.hpp"
 #include "study_files.hpp"
 #include "study_internal.hpp"
 
@@ -80,6 +82,18 @@ std::vector<double> sample_input(const Family& f, std::uint64_t seed, Query q, l
 
 }  // namespace
 
+Answer uniform_certified_answer(Query query, const std::vector<double>& x) {
+  switch (query) {
+    case Query::line_cylinder: return certified_line_cylinder(line_at(x), cylinder_at(x, 6)).answer;
+    case Query::ray_cylinder: return certified_line_cylinder(ray_at(x), cylinder_at(x, 6)).answer;
+    case Query::segment_cylinder: return certified_line_cylinder(segment_at(x), cylinder_at(x, 6)).answer;
+    case Query::line_elliptic_cylinder: return certified_line_cylinder(line_at(x), elliptic_at(x, 6)).answer;
+    case Query::triangle_cylinder: return certified_triangle_cylinder(triangle_at(x), cylinder_at(x, 9)).answer;
+    case Query::cylinder_cylinder: return certified_cylinder_cylinder(cylinder_at(x, 0), cylinder_at(x, 7)).answer;
+  }
+  return Answer::undecided;
+}
+
 std::vector<double> uniform_sample_input(std::uint64_t seed, Query q, long i) { return sample_input(uniform_family(all_families(), q), seed, q, i); }
 
 bool in_uniform_sample(const Method& m, const StudyOptions& o) { return m.stride == 1 && m.nt != "core_expr" && keep_name(o.methods, m.name()); }
@@ -110,7 +124,7 @@ void run_uniform_sample(const StudyOptions& o, const Registry& registry, const f
       const std::size_t end = std::min(mine, (chunk + 1) * kChunk);
       for (std::size_t k = chunk * kChunk; k < end; ++k) {
         const std::vector<double> x = sample_input(family, o.seed, q, first + static_cast<long>(k) * step);
-        const Answer c = certified_answer(q, x);
+        const Answer c = uniform_certified_answer(q, x);
         certified[k] = static_cast<unsigned char>(c);
         for (std::size_t j = 0; j < methods.size(); ++j) {
           UniformCounts& u = local[j];

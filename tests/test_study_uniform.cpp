@@ -150,7 +150,7 @@ BOOST_AUTO_TEST_CASE(counts_of_methods_with_known_answers) {
 }
 
 BOOST_AUTO_TEST_CASE(certified_answers_agree_with_the_gap_path) {
-  // The sample's reference (certified_answer, the filtered queries on the doubles) against
+  // The sample's reference (uniform_certified_answer, the filtered queries on the doubles) against
   // certify (the gap's own exact comparisons for lines and triangles, the refined pair stages).
   for (Query q : {Query::line_cylinder, Query::ray_cylinder, Query::segment_cylinder, Query::line_elliptic_cylinder, Query::triangle_cylinder,
                   Query::cylinder_cylinder}) {
@@ -165,7 +165,7 @@ BOOST_AUTO_TEST_CASE(certified_answers_agree_with_the_gap_path) {
       BOOST_TEST((cli::detail::uniform_sample_input(1, q, i + 1) != inst.x));
       certify(inst);
       BOOST_TEST(inst.certified_ok);
-      BOOST_TEST((certified_answer(q, inst.x) == inst.certified), to_string(q) << " instance " << i);
+      BOOST_TEST((cli::detail::uniform_certified_answer(q, inst.x) == inst.certified), to_string(q) << " instance " << i);
       ++seen[inst.certified];
     }
     // A uniform sample holds both separated and meeting inputs.

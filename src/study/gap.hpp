@@ -455,21 +455,6 @@ inline CylinderCylinderOptions refined_gap_options() {
   return o;
 }
 
-// The certified answer alone, from the binary64 input (the filtered certified queries, no gap, no
-// refined enclosure): the reference of the uniform sample (src/study_uniform.cpp), where only the
-// answer is compared. The same queries as certify() on the same input, so the same answer.
-inline Answer certified_answer(Query query, const std::vector<double>& x) {
-  switch (query) {
-    case Query::line_cylinder: return certified_line_cylinder(line_at(x), cylinder_at(x, 6)).answer;
-    case Query::ray_cylinder: return certified_line_cylinder(ray_at(x), cylinder_at(x, 6)).answer;
-    case Query::segment_cylinder: return certified_line_cylinder(segment_at(x), cylinder_at(x, 6)).answer;
-    case Query::line_elliptic_cylinder: return certified_line_cylinder(line_at(x), elliptic_at(x, 6)).answer;
-    case Query::triangle_cylinder: return certified_triangle_cylinder(triangle_at(x), cylinder_at(x, 9)).answer;
-    case Query::cylinder_cylinder: return certified_cylinder_cylinder(cylinder_at(x, 0), cylinder_at(x, 7)).answer;
-  }
-  return Answer::undecided;
-}
-
 inline void certify(Instance& inst, const CylinderCylinderOptions& cyl_options = refined_gap_options()) {
   using namespace detail;
   const std::vector<double>& x = inst.x;
