@@ -155,7 +155,7 @@ int main(int argc, char** argv) {
       "written and corrected, the robust double method, the generic methods in double, long double,\n"
       "intervals, Gmpfr and CORE::Expr, and the peer libraries found at build time), judges each answer\n"
       "against the certified one, draws failure maps and hunts for each method's worst input. Writes\n"
-      "results/<name>/ (instances.csv, inputs.csv, summary.txt/csv, machine.json, failure_maps/, hunt.csv,\n"
+      "results/<name>/ (instances.csv, inputs.csv, uniform.csv, summary.txt/csv, machine.json, failure_maps/, hunt.csv,\n"
       "figures/) and prints the summary table. Sizes: tiny (seconds), small, default (minutes), large.");
   study->add_option("--name", study_options.name, "Results folder name under --out (default: the size)");
   study->add_option("--out", study_options.out_root, "Results root (default: results)");

@@ -183,7 +183,8 @@ void write_instances(const fs::path& dir, const std::vector<Planned>& plan, cons
 // o.uniform_per_query instances per query, counted per method; merge_uniform adds the shards'
 // rows into dir/uniform.csv (throws std::runtime_error naming the shard when a file is missing,
 // malformed or has other rows than the first shard's). in_uniform_sample: whether a method takes
-// part (it runs on every instance: stride 1, not CORE::Expr; kept by the method filter).
+// part (it runs on every instance: stride 1, not CORE::Expr, not the certified query; kept by the
+// method filter).
 extern const char* const kUniformHeader;  // uniform.csv
 bool in_uniform_sample(const study::Method& m, const StudyOptions& o);
 // Instance i of the uniform sample of query q: drawn as the uniform family draws, from its own

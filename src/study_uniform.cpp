@@ -6,7 +6,7 @@
 // i with i mod n = s). Each is certified (uniform_certified_answer: the certified query's answer,
 // no gap) and answered by every selected method of its query that runs on every instance of the
 // study (Method::stride 1: double, long double, Interval_nt, the sweeps, the robust method, the
-// peers). The slow number types (Gmpfr, CORE::Expr), which the study runs on a share of each
+// peers; not the certified query, the reference itself). The slow number types (Gmpfr, CORE::Expr), which the study runs on a share of each
 // family only, are left out. The sample runs when the configuration keeps the `uniform` family.
 //
 // Only counts are kept, per query and method: memory does not grow with the sample but for one
@@ -96,7 +96,9 @@ Answer uniform_certified_answer(Query query, const std::vector<double>& x) {
 
 std::vector<double> uniform_sample_input(std::uint64_t seed, Query q, long i) { return sample_input(uniform_family(all_families(), q), seed, q, i); }
 
-bool in_uniform_sample(const Method& m, const StudyOptions& o) { return m.stride == 1 && m.nt != "core_expr" && keep_name(o.methods, m.name()); }
+bool in_uniform_sample(const Method& m, const StudyOptions& o) {
+  return m.kind != MethodKind::certified && m.stride == 1 && m.nt != "core_expr" && keep_name(o.methods, m.name());
+}
 
 void run_uniform_sample(const StudyOptions& o, const Registry& registry, const fs::path& dir) {
   std::ofstream csv(dir / "uniform.csv");
@@ -189,7 +191,7 @@ std::string uniform_table(const fs::path& dir) {
     std::snprintf(rate3, sizeof rate3, "%.2e", decided ? static_cast<double>(fp + fn + cls) / static_cast<double>(decided) : 0.0);
     rows << std::left << std::setw(24) << f[0] << std::setw(44) << f[1] << std::right << std::setw(8) << instances - uncertified
          << std::setw(8) << decided << std::setw(7) << fp << std::setw(7) << fn << std::setw(7) << cls << std::setw(7) << undecided
-         << std::setw(6) << failed << std::setw(10) << rate << std::setw(10) << (boolean ? "-" : rate3) << '\n';
+         << std::setw(6) << failed << std::setw(10) << rate << std::setw(10) << (boolean ? "--" : rate3) << '\n';
   }
   if (queries.empty()) return "\nuniform sample (uniform.csv): none\n";
   os << "\nuniform sample (uniform.csv): random instances per query, the methods that run on every instance (not Gmpfr, CORE::Expr);\n"
@@ -202,7 +204,7 @@ std::string uniform_table(const fs::path& dir) {
     if (quiet[q].first > 0)
       os << q << ": " << quiet[q].first << " other methods without a wrong answer, error or invalid value (each at least " << quiet[q].second
          << " decided)\n";
-  os << "n = certified instances, err = errors + invalid; rate = (FP + FN) / decided, rate3 = (FP + FN + class) / decided (- for a Boolean method).\n";
+  os << "n = certified instances, err = errors + invalid; rate = (FP + FN) / decided, rate3 = (FP + FN + class) / decided (-- for a Boolean method).\n";
   return os.str();
 }
 
