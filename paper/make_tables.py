@@ -514,7 +514,7 @@ def main():
             least = min(cr.uniform_errors(r).decided for r in quiet)
             bound = cr.percent_text(cr.error_interval(0, least)[1]) if least else "--"
             lines.append(f"% uniform_quiet: {q} " + " ".join(r["method"] for r in quiet))
-            lines.append(f"{QUERY_TEX[q] + f' ({certified_n[q]})' if first else ''} & \\emph{{{len(quiet)} other methods}} & "
+            lines.append(f"{QUERY_TEX[q] + f' ({certified_n[q]})' if first else ''} & \\emph{{{len(quiet)} {'other ' if noisy else ''}methods}} & "
                          f"$\\ge${least} & 0 & 0 & 0 & 0 & 0 ($<${bound}) & \\\\")
     if not shown_q:
         lines.append("\\multicolumn{9}{@{}l}{no uniform sample in this study}\\\\")
