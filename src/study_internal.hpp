@@ -191,9 +191,18 @@ bool in_uniform_sample(const study::Method& m, const StudyOptions& o);
 // stream of the seed (mix of the seed, "uniform_sample", the query and i), so not one of the
 // uniform family's instances in instances.csv.
 std::vector<double> uniform_sample_input(std::uint64_t seed, study::Query q, long i);
-// The certified answer alone, from the binary64 input (the filtered certified queries; no gap,
-// no refined enclosure): the sample's reference. The same queries as study::certify on the same
-// input, so the same answer.
+// The certified answers alone, from the binary64 input (the filtered certified queries; no gap,
+// no refined enclosure): the sample's reference, the solid answer and those under the ray casts'
+// contracts (study/contract.hpp; the solid one for a query other than a ray or a segment). The
+// same queries as study::certify on the same input, so the same answers; uniform_certified_answer
+// is the solid one.
+struct UniformTruth {
+  Answer solid = Answer::undecided, entry = Answer::undecided, hit = Answer::undecided;
+  Answer under(study::Contract c) const {
+    return c == study::Contract::surface_entry ? entry : (c == study::Contract::surface_hit ? hit : solid);
+  }
+};
+UniformTruth uniform_certified(study::Query q, const std::vector<double>& x);
 Answer uniform_certified_answer(study::Query q, const std::vector<double>& x);
 void run_uniform_sample(const StudyOptions& o, const study::Registry& registry, const fs::path& dir);
 void merge_uniform(const std::vector<fs::path>& shards, const fs::path& dir);

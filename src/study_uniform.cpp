@@ -9,9 +9,11 @@
 // peers; not the certified query, the reference itself). The slow number types (Gmpfr, CORE::Expr), which the study runs on a share of each
 // family only, are left out. The sample runs when the configuration keeps the `uniform` family.
 //
-// Only counts are kept, per query and method: memory does not grow with the sample but for one
-// byte per instance of the query being sampled (its certified answer, for the serial methods'
-// pass). The parallel methods answer on o.threads threads; the serial ones (ODE's trimesh
+// Each method is judged against the certified answer under its contract (study/contract.hpp: the
+// solid one, or a ray cast's surface entry or surface hit), as on the families; the certified
+// answers' counts are the solid ones. Only counts are kept, per query and method: memory does not
+// grow with the sample but for three bytes per instance of the query being sampled (its certified
+// answers, for the serial methods' pass). The parallel methods answer on o.threads threads; the serial ones (ODE's trimesh
 // collider; Method::serial) on the main thread afterwards, each instance drawn again.
 //
 // uniform.csv (experiments/STUDY_FILES.md): one row per query and method, the query's rows in
@@ -27,6 +29,7 @@
 #include "certcyl/certified/cylinder_cylinder.hpp"
 #include "certcyl/certified/line_cylinder.hpp"
 #include "certcyl/certified/triangle_cylinder.hpp"
+#include "study/contract.hpp"
 #include "study/families.hpp"
 #include "study_files.hpp"
 #include "study_internal.hpp"
@@ -82,17 +85,23 @@ std::vector<double> sample_input(const Family& f, std::uint64_t seed, Query q, l
 
 }  // namespace
 
-Answer uniform_certified_answer(Query query, const std::vector<double>& x) {
+UniformTruth uniform_certified(Query query, const std::vector<double>& x) {
+  auto line = [](const CertifiedLineResult& r) {
+    return UniformTruth{r.answer, contract_answer(r, Contract::surface_entry), contract_answer(r, Contract::surface_hit)};
+  };
+  auto solid = [](Answer a) { return UniformTruth{a, a, a}; };
   switch (query) {
-    case Query::line_cylinder: return certified_line_cylinder(line_at(x), cylinder_at(x, 6)).answer;
-    case Query::ray_cylinder: return certified_line_cylinder(ray_at(x), cylinder_at(x, 6)).answer;
-    case Query::segment_cylinder: return certified_line_cylinder(segment_at(x), cylinder_at(x, 6)).answer;
-    case Query::line_elliptic_cylinder: return certified_line_cylinder(line_at(x), elliptic_at(x, 6)).answer;
-    case Query::triangle_cylinder: return certified_triangle_cylinder(triangle_at(x), cylinder_at(x, 9)).answer;
-    case Query::cylinder_cylinder: return certified_cylinder_cylinder(cylinder_at(x, 0), cylinder_at(x, 7)).answer;
+    case Query::line_cylinder: return line(certified_line_cylinder(line_at(x), cylinder_at(x, 6)));
+    case Query::ray_cylinder: return line(certified_line_cylinder(ray_at(x), cylinder_at(x, 6)));
+    case Query::segment_cylinder: return line(certified_line_cylinder(segment_at(x), cylinder_at(x, 6)));
+    case Query::line_elliptic_cylinder: return line(certified_line_cylinder(line_at(x), elliptic_at(x, 6)));
+    case Query::triangle_cylinder: return solid(certified_triangle_cylinder(triangle_at(x), cylinder_at(x, 9)).answer);
+    case Query::cylinder_cylinder: return solid(certified_cylinder_cylinder(cylinder_at(x, 0), cylinder_at(x, 7)).answer);
   }
-  return Answer::undecided;
+  return solid(Answer::undecided);
 }
+
+Answer uniform_certified_answer(Query query, const std::vector<double>& x) { return uniform_certified(query, x).solid; }
 
 std::vector<double> uniform_sample_input(std::uint64_t seed, Query q, long i) { return sample_input(uniform_family(all_families(), q), seed, q, i); }
 
@@ -115,7 +124,7 @@ void run_uniform_sample(const StudyOptions& o, const Registry& registry, const f
     // This shard's instances: i = shard_index, shard_index + shard_count, ...
     const long first = o.shard_index, step = o.shard_count;
     const std::size_t mine = o.uniform_per_query > first ? static_cast<std::size_t>((o.uniform_per_query - first - 1) / step + 1) : 0;
-    std::vector<unsigned char> certified(mine);
+    std::vector<UniformTruth> certified(mine);
     std::vector<UniformCounts> counts(methods.size());
     std::mutex counts_mutex;
     Progress progress(o, "uniform sample, " + std::string(to_string(q)), mine);
@@ -126,8 +135,9 @@ void run_uniform_sample(const StudyOptions& o, const Registry& registry, const f
       const std::size_t end = std::min(mine, (chunk + 1) * kChunk);
       for (std::size_t k = chunk * kChunk; k < end; ++k) {
         const std::vector<double> x = sample_input(family, o.seed, q, first + static_cast<long>(k) * step);
-        const Answer c = uniform_certified_answer(q, x);
-        certified[k] = static_cast<unsigned char>(c);
+        const UniformTruth truth = uniform_certified(q, x);
+        const Answer c = truth.solid;
+        certified[k] = truth;
         for (std::size_t j = 0; j < methods.size(); ++j) {
           UniformCounts& u = local[j];
           ++u.instances;
@@ -138,7 +148,7 @@ void run_uniform_sample(const StudyOptions& o, const Registry& registry, const f
           }
           if (methods[j]->serial) continue;
           const MethodOutput out = run_quiet(*methods[j], x);
-          u.add_outcome(out, judge(out, c));
+          u.add_outcome(out, judge(out, truth.under(methods[j]->contract)));
         }
       }
       std::lock_guard lock(counts_mutex);
@@ -149,10 +159,9 @@ void run_uniform_sample(const StudyOptions& o, const Registry& registry, const f
     for (std::size_t j = 0; j < methods.size(); ++j) {
       if (!methods[j]->serial) continue;
       for (std::size_t k = 0; k < mine; ++k) {
-        const Answer c = static_cast<Answer>(certified[k]);
-        if (c == Answer::undecided) continue;
+        if (certified[k].solid == Answer::undecided) continue;
         const MethodOutput out = run_quiet(*methods[j], sample_input(family, o.seed, q, first + static_cast<long>(k) * step));
-        counts[j].add_outcome(out, judge(out, c));
+        counts[j].add_outcome(out, judge(out, certified[k].under(methods[j]->contract)));
       }
     }
     for (std::size_t j = 0; j < methods.size(); ++j) {

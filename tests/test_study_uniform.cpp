@@ -166,6 +166,11 @@ BOOST_AUTO_TEST_CASE(certified_answers_agree_with_the_gap_path) {
       certify(inst);
       BOOST_TEST(inst.certified_ok);
       BOOST_TEST((cli::detail::uniform_certified_answer(q, inst.x) == inst.certified), to_string(q) << " instance " << i);
+      // The ray casts' contracts: the same answers as certify's.
+      const cli::detail::UniformTruth truth = cli::detail::uniform_certified(q, inst.x);
+      BOOST_TEST((truth.under(Contract::surface_entry) == inst.certified_entry), to_string(q) << " instance " << i);
+      BOOST_TEST((truth.under(Contract::surface_hit) == inst.certified_surface_hit), to_string(q) << " instance " << i);
+      BOOST_TEST((truth.under(Contract::solid) == inst.certified));
       ++seen[inst.certified];
     }
     // A uniform sample holds both separated and meeting inputs.
