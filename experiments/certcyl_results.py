@@ -24,7 +24,8 @@ and paper/ share.
                           three-valued one (FP + FN + class) / decided, each with its Wilson interval
   boolean_methods(rows)   the methods that answered `intersecting` (no three-valued answer)
   uniform_errors(r)       the Errors of a row of uniform.csv (the uniform sample's counts of a
-                          query and method); uniform_boolean(r): whether it is a Boolean method
+                          query and method); uniform_boolean(r): whether it is a Boolean method;
+                          uniform_not_decided(r): its undecided, error and invalid answers
   uniform_sample(folder)  the rows of FOLDER/uniform.csv, [] when the study wrote none
   K_BINS, k_bin(k)        the bins of k_ulps (k = 0, then four binades a bin) and a value's bin
   errors_by_k(rows)       (query, method) -> one Errors per bin of K_BINS, hard-case families only
@@ -36,10 +37,15 @@ and paper/ share.
                           (the paired instances, method -> (median ns, Boolean rate, decided)) on
                           the instances of `query` where every method ran: a speed-against-error
                           point per method that compares like with like
+  Tally                   a method's rows on a set of instances: n, the outcomes not decided,
+                          the Errors of the decided answers, the times
+  paired_by_base(rows, ran, numbers)
+                          (query, algorithm) -> the instances where every number type of the
+                          algorithm (those of `numbers`, when given) ran
   paired_by_algorithm(rows)
                           per query, each algorithm's number types compared on the instances
-                          where all of them ran: (query, method) -> PairedTally (paired count,
-                          outcomes, Errors, median ns on those instances)
+                          where all of them ran: (query, method) -> PairedTally (a Tally with the
+                          paired count)
   input_class(family)     "generic" (the uniform family) or "near_degenerate" (a hard-case family)
   time_stats(values)      (n, p10, p50, p90, mean, max) of times: nearest-rank percentiles and the
                           mean summed in the given order, as the study's timing*.csv files
@@ -235,6 +241,12 @@ def uniform_errors(r):
     return e
 
 
+def uniform_not_decided(r):
+    """The instances of a row of uniform.csv that its method did not decide: undecided, error or
+    invalid."""
+    return int(r["undecided"]) + int(r["error"]) + int(r["invalid"])
+
+
 def uniform_boolean(r):
     """Whether the method of a row of uniform.csv answered `intersecting` (a Boolean method: no
     three-valued error)."""
@@ -366,16 +378,16 @@ def paired_speed_error(rows, query, methods, ran=None):
     return common, {m: (percentile(ns[m], 50), errs[m].rate, errs[m].decided) for m in methods}
 
 
-class PairedTally:
-    """A method's rows on the paired instances of its algorithm and query: `paired` (how many
-    instances every number type of the algorithm ran on), `n` (its rows there, uncertified ones
+class Tally:
+    """A method's rows of instances.csv on some set of instances: `n` (its rows, uncertified ones
     left out), the outcomes not decided (undecided, error, invalid), the Errors of its decided
-    answers, and the median time (nearest rank; a call that ended its process has none)."""
+    answers, and the times (a call that ended its process has none). The counting the summary
+    table, the paper's tables and their quoted numbers share."""
 
-    __slots__ = ("paired", "n", "undecided", "error", "invalid", "errors", "ns")
+    __slots__ = ("n", "undecided", "error", "invalid", "errors", "ns")
 
-    def __init__(self, paired):
-        self.paired, self.n, self.undecided, self.error, self.invalid = paired, 0, 0, 0, 0
+    def __init__(self):
+        self.n, self.undecided, self.error, self.invalid = 0, 0, 0, 0
         self.errors, self.ns = Errors(), []
 
     def add(self, r):
@@ -394,21 +406,38 @@ class PairedTally:
         return percentile(self.ns, 50)
 
 
+class PairedTally(Tally):
+    """A Tally on the paired instances of its algorithm and query, with `paired`: how many
+    instances every number type of the algorithm ran on."""
+
+    __slots__ = ("paired",)
+
+    def __init__(self, paired):
+        super().__init__()
+        self.paired = paired
+
+
+def paired_by_base(rows, ran=None, numbers=None):
+    """(query, algorithm) -> the instances of the query on which every number type of the
+    algorithm (split_method's base) ran, from the rows of instances.csv; `numbers` (optional)
+    restricts the number types compared to those it lists."""
+    ran = ran_on(rows) if ran is None else ran
+    by_base = {}
+    for q, m in ran:
+        base, nt = split_method(m)
+        if numbers is None or nt in numbers:
+            by_base.setdefault((q, base), []).append(m)
+    return {k: paired(rows, k[0], ms, ran) for k, ms in by_base.items()}
+
+
 def paired_by_algorithm(rows):
     """(query, method) -> PairedTally: each method's rows of instances.csv on the instances of its
     query where every number type of its algorithm (split_method's base) ran, so that the number
     types of an algorithm are compared on the same inputs (the slow types run on a pseudo-random
     share of each family only). An algorithm with one number type keeps all of its instances."""
     ran = ran_on(rows)
-    by_base = {}
-    for q, m in ran:
-        by_base.setdefault((q, split_method(m)[0]), []).append(m)
-    common, out = {}, {}
-    for (q, base), ms in by_base.items():
-        ids = paired(rows, q, ms, ran)
-        common[(q, base)] = ids
-        for m in ms:
-            out[(q, m)] = PairedTally(len(ids))
+    common = paired_by_base(rows, ran)
+    out = {(q, m): PairedTally(len(common[(q, split_method(m)[0])])) for q, m in ran}
     for r in rows:
         q, m = r["query"], r["method"]
         if r["instance"] in common[(q, split_method(m)[0])]:

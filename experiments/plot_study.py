@@ -900,7 +900,7 @@ def uniform_cells(r):
     e = cr.uniform_errors(r)
     cell = (lambda three: f"{cr.percent_text(e.rate3 if three else e.rate)} "
             f"[{cr.percent_text(e.interval(three)[0])}, {cr.percent_text(e.interval(three)[1])}]")
-    return [r["method"], r["kind"], e.decided, e.fp, e.fn, e.cls, int(r["undecided"]) + int(r["error"]) + int(r["invalid"]),
+    return [r["method"], r["kind"], e.decided, e.fp, e.fn, e.cls, cr.uniform_not_decided(r),
             cell(False) if e.decided else "--", cell(True) if e.decided and not cr.uniform_boolean(r) else "--"]
 
 

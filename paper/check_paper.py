@@ -70,32 +70,46 @@ def recount_by_k(instances):
     return counts
 
 
-def check_k_table(path, instances, problems):
-    """Every line of the table after a comment "% error_by_k: QUERY METHOD MEASURE" holds, per bin
-    of k and over all k, the wrong answers over the decided ones that instances.csv gives."""
-    with open(path) as f:
-        lines = f.read().splitlines()
-    counts = recount_by_k(instances)
-    checked = 0
-    for i, line in enumerate(lines):
-        m = re.match(r"^% error_by_k: (\S+) (\S+) (boolean|three_valued)$", line)
-        if not m:
-            continue
-        q, method, measure = m.groups()
-        cells = [c.strip() for c in lines[i + 1].rstrip("\\").split("&")[2:]] if i + 1 < len(lines) else []
-        c = counts.get((q, method))
-        want = ["" if c is None or not cell[0] else f"{cell[2 if measure == 'three_valued' else 1]}/{cell[0]}"
-                for cell in (c or [[0, 0, 0]] * (len(K_BINS) + 1))]
-        if cells != want:
-            problems.append(f"{K_TABLE}: {q} {method} {measure}: shows {' '.join(cells)}, instances.csv gives {' '.join(want)}")
-        checked += 1
-    if not checked:
-        problems.append(f"{K_TABLE}: no line of counts")
-
-
 def table_cells(line):
     """The cells of a table line, its row end and spacing removed."""
     return [c.strip() for c in re.sub(r"\\\\(\[[^\]]*\])?\s*$", "", line).split("&")]
+
+
+def check_marked_lines(path, table, pattern, recount, problems, none_found=None):
+    """What the checks of the generated tables share: for every line of the table at `path`
+    matching the regex `pattern` (a comment saying what the next line shows), recount(match,
+    cells) gives the comparisons (what, shown, wanted, source) of the next line's cells
+    (table_cells) with the study's file `source`; each whose shown cells are not the wanted ones
+    is one problem, "TABLE: WHAT: shows ..., SOURCE gives ...". `none_found`, when given, is the
+    problem when no line matches."""
+    with open(path) as f:
+        lines = f.read().splitlines()
+    matched = 0
+    for i, line in enumerate(lines):
+        m = re.match(pattern, line)
+        if not m:
+            continue
+        matched += 1
+        cells = table_cells(lines[i + 1]) if i + 1 < len(lines) else []
+        for what, shown, want, source in recount(m, cells):
+            if shown != want:
+                problems.append(f"{table}: {what}: shows {' '.join(shown)}, {source} gives {' '.join(want)}")
+    if not matched and none_found:
+        problems.append(f"{table}: {none_found}")
+
+
+def check_k_table(path, instances, problems):
+    """Every line of the table after a comment "% error_by_k: QUERY METHOD MEASURE" holds, per bin
+    of k and over all k, the wrong answers over the decided ones that instances.csv gives."""
+    counts = recount_by_k(instances)
+
+    def recount(m, cells):
+        q, method, measure = m.groups()
+        c = counts.get((q, method))
+        want = ["" if c is None or not cell[0] else f"{cell[2 if measure == 'three_valued' else 1]}/{cell[0]}"
+                for cell in (c or [[0, 0, 0]] * (len(K_BINS) + 1))]
+        return [(f"{q} {method} {measure}", cells[2:], want, "instances.csv")]
+    check_marked_lines(path, K_TABLE, r"^% error_by_k: (\S+) (\S+) (boolean|three_valued)$", recount, problems, "no line of counts")
 
 
 def check_timing_table(path, instances, inputs, problems):
@@ -104,32 +118,23 @@ def check_timing_table(path, instances, inputs, problems):
     its process has none), formatted as the table formats them."""
     rows = cr.read_csv(instances)
     stage = {r["instance"]: r["stage"] for r in cr.read_csv(inputs)}
-    with open(path) as f:
-        lines = f.read().splitlines()
-    checked = 0
-    for i, line in enumerate(lines):
-        m = re.match(r"^% timing: (\S+) (\S+) (generic|near_degenerate|all)$", line)
-        s = re.match(r"^% timing_stage: (\S+) (\S+) all$", line)
-        if not (m or s):
-            continue
-        if m:
-            q, method, cls = m.groups()
+
+    def recount(m, cells):
+        if m.group(1):
+            q, method, cls = m.group(2, 3, 4)
             times = [float(r["ns"]) for r in rows if r["query"] == q and r["method"] == method and r["answer"] != "process_ended"
                      and cls in ("all", cr.input_class(r["family"]))]
             what = f"{q} {method} {cls}"
         else:
-            method, st = s.groups()
+            method, st = m.group(5, 6)
             times = [float(r["ns"]) for r in rows if r["query"] == "cylinder_cylinder" and r["method"] == method
                      and r["answer"] != "process_ended" and stage.get(r["instance"]) == st]
             what = f"{method} stage {st}"
         stats = cr.time_stats(times)
         want = [] if stats is None else [str(stats[0])] + [cr.ns_tex(v) for v in stats[1:]]
-        cells = table_cells(lines[i + 1])[2:] if i + 1 < len(lines) else []
-        if cells != want:
-            problems.append(f"{TIMING_TABLE}: {what}: shows {' '.join(cells)}, instances.csv gives {' '.join(want)}")
-        checked += 1
-    if not checked:
-        problems.append(f"{TIMING_TABLE}: no line of times")
+        return [(what, cells[2:], want, "instances.csv")]
+    check_marked_lines(path, TIMING_TABLE, r"^% (?:(timing): (\S+) (\S+) (generic|near_degenerate|all)|timing_stage: (\S+) (\S+) all)$",
+                       recount, problems, "no line of times")
 
 
 def check_seeds_table(path, instances, problems):
@@ -137,13 +142,8 @@ def check_seeds_table(path, instances, problems):
     ran (per query, pooled) and, per number type, FP/FN/class on those instances only."""
     rows = cr.read_csv(instances)
     ran = cr.ran_on(rows)
-    with open(path) as f:
-        lines = f.read().splitlines()
-    checked = 0
-    for i, line in enumerate(lines):
-        m = re.match(r"^% paired: (\S+) (.*)$", line)
-        if not m:
-            continue
+
+    def recount(m, cells):
         base, nts = m.group(1), m.group(2).split()
         common = {}
         for q in {q for q, _ in ran}:
@@ -160,12 +160,8 @@ def check_seeds_table(path, instances, problems):
                 c[2] += r["outcome"] == "false_negative"
                 c[3] += r["outcome"] == "class_mismatch"
         want = [str(sum(len(v) for v in common.values()))] + [f"{c[1]}/{c[2]}/{c[3]}" if c[0] else "" for c in counts.values()]
-        cells = table_cells(lines[i + 1])[1:] if i + 1 < len(lines) else []
-        if cells != want:
-            problems.append(f"{SEEDS_TABLE}: {base}: shows {' '.join(cells)}, instances.csv gives {' '.join(want)} on the paired instances")
-        checked += 1
-    if not checked:
-        problems.append(f"{SEEDS_TABLE}: no line of counts")
+        return [(f"{base} on the paired instances", cells[1:], want, "instances.csv")]
+    check_marked_lines(path, SEEDS_TABLE, r"^% paired: (\S+) (.*)$", recount, problems, "no line of counts")
 
 
 def check_uniform_table(path, uniform, problems):
@@ -174,40 +170,28 @@ def check_uniform_table(path, uniform, problems):
     lists exactly the query's methods without a wrong answer or an undecided one and shows the
     least decided count among them; every query of uniform.csv is in the table."""
     rows = {(r["query"], r["method"]): r for r in cr.read_csv(uniform)}
-    with open(path) as f:
-        lines = f.read().splitlines()
     seen = set()
-    for i, line in enumerate(lines):
-        m = re.match(r"^% uniform: (\S+) (\S+)$", line)
-        quiet = re.match(r"^% uniform_quiet: (\S+) (.*)$", line)
-        if not (m or quiet):
-            continue
-        cells = table_cells(lines[i + 1]) if i + 1 < len(lines) else []
-        if m:
-            q, method = m.groups()
+
+    def recount(m, cells):
+        if m.group(1):
+            q, method = m.group(2, 3)
             seen.add(q)
             r = rows.get((q, method))
             if r is None:
                 problems.append(f"{UNIFORM_TABLE}: {q} {method} is not in uniform.csv")
-                continue
+                return []
             want = [r["decided"], r["false_positive"], r["false_negative"], r["class_mismatch"],
                     str(int(r["undecided"]) + int(r["error"]) + int(r["invalid"]))]
-            if cells[2:7] != want:
-                problems.append(f"{UNIFORM_TABLE}: {q} {method}: shows {' '.join(cells[2:7])}, uniform.csv gives {' '.join(want)}")
-            continue
-        q, listed = quiet.group(1), quiet.group(2).split()
+            return [(f"{q} {method}", cells[2:7], want, "uniform.csv")]
+        q, listed = m.group(4), m.group(5).split()
         seen.add(q)
         clean = sorted(k[1] for k, r in rows.items() if k[0] == q and cr.uniform_errors(r).wrong3 == 0
                        and int(r["undecided"]) + int(r["error"]) + int(r["invalid"]) == 0)
-        if sorted(listed) != clean:
-            problems.append(f"{UNIFORM_TABLE}: {q}: the other methods are {' '.join(sorted(listed))}, uniform.csv gives {' '.join(clean)}")
         least = min((int(rows[(q, m)]["decided"]) for m in listed if (q, m) in rows), default=0)
-        if cells[3:7] != ["0"] * 4:
-            problems.append(f"{UNIFORM_TABLE}: {q}: the other methods' line shows {' '.join(cells[3:7])} wrong or undecided, "
-                            f"uniform.csv gives 0 0 0 0")
-        if len(cells) < 3 or cells[2] != f"$\\ge${least}":
-            problems.append(f"{UNIFORM_TABLE}: {q}: the other methods' least decided count shows {cells[2] if len(cells) > 2 else ''}, "
-                            f"uniform.csv gives {least}")
+        return [(f"{q}: the other methods", sorted(listed), clean, "uniform.csv"),
+                (f"{q}: the other methods' wrong and undecided counts", cells[3:7], ["0"] * 4, "uniform.csv"),
+                (f"{q}: the other methods' least decided count", cells[2:3], [f"$\\ge${least}"], "uniform.csv")]
+    check_marked_lines(path, UNIFORM_TABLE, r"^% (?:(uniform): (\S+) (\S+)|uniform_quiet: (\S+) (.*))$", recount, problems)
     missing = sorted({q for q, _ in rows} - seen)
     if missing:
         problems.append(f"{UNIFORM_TABLE}: leaves out the queries {' '.join(missing)} of uniform.csv")

@@ -135,19 +135,21 @@ class Numbers:
 
 # ---- aggregation ------------------------------------------------------------------------------
 
-class Tally:
-    """A method's instances (over all queries, or one): judged (n), the outcomes, the times, and
-    whether it is Boolean (answered `intersecting`: no three-valued error, cr.Errors)."""
+class Tally(cr.Tally):
+    """cr.Tally (a method's rows: n, the outcomes, the times) with what the tables add: the
+    queries, the kind, whether the method is Boolean (answered `intersecting`: no three-valued
+    error), its Boolean errors by cause, its contract and the instances where that differs."""
+
+    __slots__ = ("conv", "alg", "unsplit", "cdiff", "contract", "converts", "queries", "kind", "boolean")
 
     def __init__(self):
-        self.n = self.fp = self.fn = self.cls = self.undec = self.err = self.inv = 0
+        super().__init__()
         # Boolean errors (FP + FN) by cause (instances.csv's cause: each is conversion, algorithm
         # or unsplit), and the instances whose answer under the method's contract is not the solid
         # one.
         self.conv = self.alg = self.unsplit = self.cdiff = 0
         self.contract = "solid"
         self.converts = False
-        self.ns = []
         self.queries = set()
         self.kind = ""
         self.boolean = False
@@ -157,16 +159,9 @@ class Tally:
         self.queries.add(r["query"])
         if r["outcome"] == "uncertified":
             return
-        self.n += 1
-        o = r["outcome"]
-        self.fp += o == "false_positive"
-        self.fn += o == "false_negative"
-        self.cls += o == "class_mismatch"
-        self.undec += o == "undecided"
-        self.err += o == "error"
-        self.inv += o == "invalid"
+        super().add(r)
         self.boolean |= r["answer"] == "intersecting"
-        if o in ("false_positive", "false_negative"):
+        if r["outcome"] in cr.FAILURES:
             self.conv += r["cause"] in ("conversion", "conversion+algorithm")
             self.alg += r["cause"] in ("algorithm", "conversion+algorithm")
             self.unsplit += r["cause"] == "unsplit"
@@ -175,23 +170,47 @@ class Tally:
         if r["contract"] != "solid":
             self.contract = r["contract"]
         self.converts |= r["received_answer"] != ""
-        self.ns.append(fnum(r["ns"]))
 
-    @property
-    def decided(self):
-        return self.n - self.undec - self.err - self.inv
+    fp = property(lambda self: self.errors.fp)
+    fn = property(lambda self: self.errors.fn)
+    cls = property(lambda self: self.errors.cls)
+    decided = property(lambda self: self.errors.decided)
 
     @property
     def rate(self):
-        """The Boolean error rate, (FP + FN) / decided (summary.csv's disagreement_rate)."""
-        return (self.fp + self.fn) / self.decided if self.decided else 0.0
+        """The Boolean error rate, (FP + FN) / decided (summary.csv's disagreement_rate); 0 when
+        nothing was decided."""
+        return self.errors.rate if self.decided else 0.0
 
     @property
     def rate3(self):
         """The three-valued error rate, (FP + FN + class) / decided; None for a Boolean method."""
         if self.boolean:
             return None
-        return (self.fp + self.fn + self.cls) / self.decided if self.decided else 0.0
+        return self.errors.rate3 if self.decided else 0.0
+
+
+# The numbers a Tally gives the text, by key prefix: N[f"{prefix}:{key}"] (tally_numbers).
+TALLY_NUMBERS = {
+    "n": lambda t: str(t.n), "fp": lambda t: str(t.fp), "fn": lambda t: str(t.fn), "cls": lambda t: str(t.cls),
+    "wrong": lambda t: str(t.fp + t.fn), "wrong3": lambda t: str(t.fp + t.fn + t.cls),
+    "undec": lambda t: str(t.undecided), "err": lambda t: str(t.error),
+    "rate": lambda t: sci(t.rate), "rate3": lambda t: sci(t.rate3),
+    "conv": lambda t: str(t.conv), "alg": lambda t: str(t.alg), "unsplit": lambda t: str(t.unsplit), "cdiff": lambda t: str(t.cdiff),
+}
+
+
+def tally_numbers(N, key, t, names, prefix=""):
+    """N[f"{prefix}{name}:{key}"] for every name of `names` (keys of TALLY_NUMBERS) of Tally t."""
+    for name in names:
+        N[f"{prefix}{name}:{key}"] = TALLY_NUMBERS[name](t)
+
+
+def gap_bound(r):
+    """The certified lower bound of the size of a row's signed gap (0 when its enclosure
+    [gap_lo, gap_hi] contains 0)."""
+    lo, hi = fnum(r["gap_lo"]), fnum(r["gap_hi"])
+    return 0.0 if lo <= 0 <= hi else min(abs(lo), abs(hi))
 
 
 SEED_BASES = [
@@ -320,45 +339,21 @@ def main():
         if r["outcome"] == "false_negative" and r["certified_answer"] == "touching":
             fn_touching[m] += 1
         # (The depth margin G only: a cylinder pair's gap, log(phi*), is another quantity.)
-        if r["outcome"] in ("false_positive", "false_negative") and r["query"] != "cylinder_cylinder":
-            lo, hi = fnum(r["gap_lo"]), fnum(r["gap_hi"])
-            g = 0.0 if lo <= 0 <= hi else min(abs(lo), abs(hi))
-            wrong_gap[m] = max(wrong_gap[m], g)
+        if r["outcome"] in cr.FAILURES and r["query"] != "cylinder_cylinder":
+            wrong_gap[m] = max(wrong_gap[m], gap_bound(r))
     N["rows:total"] = str(len(rows))
     N["methods:total"] = str(len(tally))
     for m, t in tally.items():
-        N[f"n:{m}"] = str(t.n)
-        N[f"fp:{m}"] = str(t.fp)
-        N[f"fn:{m}"] = str(t.fn)
-        N[f"wrong:{m}"] = str(t.fp + t.fn)
-        N[f"wrong3:{m}"] = str(t.fp + t.fn + t.cls)
-        N[f"cls:{m}"] = str(t.cls)
-        N[f"undec:{m}"] = str(t.undec)
-        N[f"err:{m}"] = str(t.err)
-        N[f"rate:{m}"] = sci(t.rate)
-        N[f"rate3:{m}"] = sci(t.rate3)
+        tally_numbers(N, m, t, ("n", "fp", "fn", "wrong", "wrong3", "cls", "undec", "err", "rate", "rate3"))
         N[f"ns:{m}"] = ns_text(upper_median(t.ns))
         N[f"q:{m}"] = str(len(t.queries))
         N[f"maxwronggap:{m}"] = sci(wrong_gap.get(m, 0.0))
         N[f"fntouch:{m}"] = str(fn_touching.get(m, 0))
-        N[f"conv:{m}"] = str(t.conv)
-        N[f"alg:{m}"] = str(t.alg)
-        N[f"unsplit:{m}"] = str(t.unsplit)
-        N[f"cdiff:{m}"] = str(t.cdiff)
+        tally_numbers(N, m, t, ("conv", "alg", "unsplit", "cdiff"))
     for (q, m), t in tally_q.items():
-        N[f"n:{q}:{m}"] = str(t.n)
-        N[f"fp:{q}:{m}"] = str(t.fp)
-        N[f"fn:{q}:{m}"] = str(t.fn)
-        N[f"cls:{q}:{m}"] = str(t.cls)
-        N[f"undec:{q}:{m}"] = str(t.undec)
-        N[f"rate:{q}:{m}"] = sci(t.rate)
-        N[f"rate3:{q}:{m}"] = sci(t.rate3)
+        tally_numbers(N, f"{q}:{m}", t, ("n", "fp", "fn", "cls", "undec", "rate", "rate3"))
         N[f"ns:{q}:{m}"] = ns_text(upper_median(t.ns))
-        N[f"wrong:{q}:{m}"] = str(t.fp + t.fn)
-        N[f"conv:{q}:{m}"] = str(t.conv)
-        N[f"alg:{q}:{m}"] = str(t.alg)
-        N[f"unsplit:{q}:{m}"] = str(t.unsplit)
-        N[f"cdiff:{q}:{m}"] = str(t.cdiff)
+        tally_numbers(N, f"{q}:{m}", t, ("wrong", "conv", "alg", "unsplit", "cdiff"))
     # The peers and the methods that receive a rounded instance (Bullet's floats, Gmpfr at 24
     # bits): per query, the contract, the Boolean errors split into conversion and algorithm
     # (each error is one of them: conv + alg + unsplit = wrong), and the instances where the contract differs from the
@@ -475,7 +470,7 @@ def main():
             if not boolean:
                 N[f"urate3:{q}:{m}"] = f"{cr.percent_text(e.rate3)}\\,\\%"
                 N[f"uci3:{q}:{m}"] = wilson_pct(e.wrong3, e.decided) + "\\,\\%"
-        if e.wrong3 or int(r["undecided"]) + int(r["error"]) + int(r["invalid"]):
+        if e.wrong3 or cr.uniform_not_decided(r):
             uwrong.append(r)
     bad = [r for r in uwrong if cr.uniform_errors(r).wrong3]
     N["uniform:methodswrong"] = str(len({r["method"] for r in bad}))
@@ -504,7 +499,7 @@ def main():
             else:
                 lo3, hi3 = e.interval(True)
                 cell3 = f"{cr.percent_text(e.rate3)} ({cr.percent_text(lo3)}--{cr.percent_text(hi3)})"
-            notdecided = int(r["undecided"]) + int(r["error"]) + int(r["invalid"])
+            notdecided = cr.uniform_not_decided(r)
             lines.append(f"% uniform: {q} {r['method']}")
             lines.append(f"{QUERY_TEX[q] + f' ({certified_n[q]})' if first else ''} & {method_tex(r['method'])} & {e.decided} & {e.fp} & {e.fn} & "
                          f"{e.cls} & {notdecided} & {cell} & {cell3}\\\\")
@@ -531,26 +526,17 @@ def main():
     # tally on those instances is ptally[method]; the text's numbers for these comparisons are
     # the p-keys below, the table's cells the same tallies.
     ran = cr.ran_on(rows)
-    paired_ids = {}  # (base, query) -> the instances where every number type of base ran
-    for base, _ in SEED_BASES:
-        for q in per_query:
-            ms_q = [f"{base}/{nt}" for nt, _ in NTS if (q, f"{base}/{nt}") in ran]
-            if ms_q:
-                paired_ids[(base, q)] = cr.paired(rows, q, ms_q, ran)
+    seed_bases = {b for b, _ in SEED_BASES}
+    paired_ids = {k: v for k, v in cr.paired_by_base(rows, ran, {nt for nt, _ in NTS}).items() if k[1] in seed_bases}
     ptally = defaultdict(Tally)
     for r in rows:
         base, nt = cr.split_method(r["method"])
-        if r["instance"] in paired_ids.get((base, r["query"]), ()):
+        if r["instance"] in paired_ids.get((r["query"], base), ()):
             ptally[r["method"]].add(r)
     for base, _ in SEED_BASES:
-        N[f"paired:{base}"] = str(sum(len(v) for (b, q), v in paired_ids.items() if b == base))
+        N[f"paired:{base}"] = str(sum(len(v) for (q, b), v in paired_ids.items() if b == base))
     for m, t in ptally.items():
-        N[f"pn:{m}"] = str(t.n)
-        N[f"pfp:{m}"] = str(t.fp)
-        N[f"pfn:{m}"] = str(t.fn)
-        N[f"pcls:{m}"] = str(t.cls)
-        N[f"prate:{m}"] = sci(t.rate)
-        N[f"prate3:{m}"] = sci(t.rate3)
+        tally_numbers(N, m, t, ("n", "fp", "fn", "cls", "rate", "rate3"), prefix="p")
         N[f"pns:{m}"] = ns_text(percentile(t.ns, 50))
     # Range of the seeds' rates per number type (for the text), Boolean and three-valued, on the
     # paired instances (the table's).
@@ -583,7 +569,7 @@ def main():
                 continue
             present = True
             cells.append(f"{t.fp}/{t.fn}/{t.cls}")
-            extra = f"{t.decided}" + (f", {t.undec}\\,u" if t.undec else "")
+            extra = f"{t.decided}" + (f", {t.undecided}\\,u" if t.undecided else "")
             cells2.append(f"{{\\scriptsize {extra}}}")
             cells3.append(f"{{\\scriptsize {pct_rate(t.rate)}/{pct_rate(t.rate3)}}}")
         if present:
@@ -682,7 +668,6 @@ def main():
     # Table: median time per query, the certified query against the methods in double (Bullet:
     # float), near-degenerate and generic inputs apart, each query on the instances where every
     # method shown for it ran (all of them: these methods run on every instance).
-    ran = cr.ran_on(rows)
     qs = [q for q in QUERY_TEX if q in per_query]
     ms = sorted({m for (q, m), t in tally_q.items() if t.kind != "sweep" and (m.endswith("/double") or m.endswith("/float") or m == "certified/exact")},
                 key=lambda m: (m != "certified/exact", m))
@@ -880,9 +865,7 @@ def main():
     for r in hunt:
         if r["found"] != "1" or r["outcome"] not in ("false_positive", "false_negative"):
             continue
-        lo, hi = fnum(r["gap_lo"]), fnum(r["gap_hi"])
-        g = 0.0 if lo <= 0 <= hi else min(abs(lo), abs(hi))
-        found.append((g, r))
+        found.append((gap_bound(r), r))
     # The signed gap is the depth margin G for the queries against one cylinder and log(phi*) for
     # cylinder pairs (src/study/gap.hpp): different quantities, so rows of the two are not ranked
     # against each other (depth margins first).
