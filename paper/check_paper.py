@@ -24,7 +24,8 @@ Fails (exit status 1, one line per problem) when
     of the other methods lists a method with a wrong answer, leaves one out or gives another
     least decided count, or the table leaves out a query of uniform.csv;
   - paper.pdf is missing, older than a file it includes, or has an implausible page count
-    (pdfinfo), or the LaTeX log reports undefined references or citations.
+    (pdfinfo), or the LaTeX log reports undefined references or citations, or a box (a table,
+    a line) wider than the text by more than OVERFULL_PT.
 """
 import csv
 import json
@@ -42,6 +43,9 @@ from certcyl_results import K_BINS, k_bin, sha256  # noqa: E402
 # signed gap) and the results the timing tables: 31 pages at the time of writing; the limit
 # catches a runaway table or figure, not the proofs.
 MIN_PAGES, MAX_PAGES = 6, 36
+# The most a box may stick out into the margin (LaTeX's \hfuzz is 0.1pt; a visible overhang is
+# a few points).
+OVERFULL_PT = 1.0
 REQUIRED_INPUTS = ["instances.csv", "inputs.csv", "summary.csv", "summary_families.csv", "hunt.csv", "uniform.csv"]
 # What the results section must show: the errors per bin of k (findings on single rates).
 REQUIRED_INCLUDES = ["generated/tables/error_by_k.tex", "figures/error_by_k.pdf", "generated/tables/timing_certified.tex",
@@ -300,6 +304,10 @@ def main():
             for pat in (r"Reference `[^']*' on page \d+ undefined", r"Citation `[^']*' on page \d+ undefined"):
                 for w in sorted(set(re.findall(pat, text))):
                     problems.append("LaTeX: " + w)
+            # A table or a line wider than the text (LaTeX sets it anyway, into the margin).
+            for w, where in re.findall(r"^Overfull \\hbox \((\d+(?:\.\d+)?)pt too wide\) (.*)$", text, re.M):
+                if float(w) > OVERFULL_PT:
+                    problems.append(f"LaTeX: Overfull \\hbox ({w}pt too wide) {where}")
         else:
             problems.append("paper.log is missing")
 

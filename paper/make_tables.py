@@ -789,9 +789,13 @@ def main():
             for key, label, three in measures:
                 counts = [(e.wrong3 if three else e.wrong, e.decided) for e in bins + [total]]
                 lines.append(f"% error_by_k: {q} {m} {key}")
-                lines.append(f"{method_tex(m) if not three else ''} & {label} & "
-                             + " & ".join(f"{w}/{n}" if n else "" for w, n in counts) + "\\\\")
-                lines.append(" & & " + " & ".join(f"{{\\tiny {wilson_pct(w, n)}}}" if n else "" for w, n in counts) + "\\\\[1pt]")
+                # The method's algorithm on its first line of counts, its number type on the line
+                # of intervals below (one cell of the method's name is the widest of the table).
+                base, nt = cr.split_method(m)
+                first, second = ("", "") if three else (tex_escape(base), f"\\texttt{{{tex_escape(nt)}}}")
+                lines.append(f"{first} & {label} & " + " & ".join(f"{w}/{n}" if n else "" for w, n in counts) + "\\\\")
+                lines.append(f"{second} & & " + " & ".join(f"{{\\tiny {wilson_pct(w, n)}}}" if n else "" for w, n in counts)
+                             + "\\\\[1pt]")
             shown += 1
     if not shown:
         lines.append(f"\\multicolumn{{{nb + 3}}}{{@{{}}l}}{{none of the methods shown was run}}\\\\")

@@ -5,7 +5,8 @@
 # rejects a paper whose figure is missing, one without the table of errors against k, one whose
 # table of errors against k shows a count other than instances.csv's, and one whose figures are
 # stale, and one whose timing table or paired table of the seeds shows a count other than
-# instances.csv's, or whose table of the uniform sample shows a count other than uniform.csv's.
+# instances.csv's, or whose table of the uniform sample shows a count other than uniform.csv's,
+# and one with a table wider than the text.
 #   run_paper_test.sh CERTCYL_BINARY SOURCE_DIR WORK_DIR
 set -euo pipefail
 certcyl=$1
@@ -89,6 +90,17 @@ for t in "timing_certified.tex:% timing: :instances.csv" "seeds_by_type.tex:% pa
   rm -rf "$work/tamper"
 done
 
+# A table wider than the text: paper.tex with one more table 1.1 text widths wide, set by
+# pdflatex (its log reports the overfull box); the check must fail, naming it.
+cp -a "$work/paper" "$work/wide"
+sed -i 's/^\\end{document}/\\begin{table}[p]\\begin{tabular}{@{}l@{}}\\rule{1.1\\textwidth}{1pt}\\end{tabular}\\end{table}\n\\end{document}/' "$work/wide/paper.tex"
+grep -q '^\\begin{table}\[p\]\\begin{tabular}' "$work/wide/paper.tex" || { echo "FAILED: the wide table was not added"; exit 1; }
+(cd "$work/wide" && pdflatex -interaction=nonstopmode paper.tex > pdflatex.log 2>&1) || true
+if check "$work/wide" "$work/tiny" > "$work/wide.log"; then
+  echo "FAILED: a table wider than the text was accepted"; exit 1
+fi
+grep -q '^check_paper: LaTeX: Overfull \\hbox' "$work/wide.log" || { cat "$work/wide.log"; echo "FAILED: no report of the overfull table"; exit 1; }
+
 # Stale figures: another study (a different seed) replaces the results, the tables are
 # regenerated from it but the figures are not: the check must fail on the figures.
 "$certcyl" study --size tiny --seed 2 --out "$work" --name tiny2 --no-plots --threads 2 > "$work/study2.log"
@@ -101,4 +113,4 @@ grep -q "^check_paper: figures: stale" "$work/stale.log" || { cat "$work/stale.l
 if grep -q "^check_paper: generated: stale" "$work/stale.log"; then
   cat "$work/stale.log"; echo "FAILED: the regenerated tables were reported stale"; exit 1
 fi
-echo "paper test: built, checked, and the checker rejects a missing and a stale figure, a paper without the errors against k, and a wrong count in their table, the timing table, the paired table or the uniform sample's table"
+echo "paper test: built, checked, and the checker rejects a missing and a stale figure, a paper without the errors against k, and a wrong count in their table, the timing table, the paired table or the uniform sample's table, and a table wider than the text"
