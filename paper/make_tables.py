@@ -874,9 +874,16 @@ def main():
     # cylinder pairs (src/study/gap.hpp): different quantities, so rows of the two are not ranked
     # against each other (depth margins first).
     found.sort(key=lambda x: (x[1]["query"] == "cylinder_cylinder", -x[0], x[1]["method"]))
-    N["hunt:methods"] = str(len(hunt))
+    # Searches (one per method and query: hunt.csv's rows) and methods are different units: the
+    # searches that found a wrong answer of the searches, the methods with one of the methods.
+    N["hunt:searches"] = str(len(hunt))
     N["hunt:found"] = str(len(found))
-    N["hunt:evaluations"] = str(max((int(r["evaluations"]) for r in hunt if r["evaluations"]), default=0))
+    N["hunt:methodcount"] = str(len({r["method"] for r in hunt}))
+    evaluations = [int(r["evaluations"]) for r in hunt if r["evaluations"]]
+    N["hunt:evaluations"] = str(max(evaluations, default=0))
+    N["hunt:evalsmin"] = str(min(evaluations, default=0))
+    N["hunt:evalspair"] = str(max((int(r["evaluations"]) for r in hunt if r["evaluations"] and r["query"] == "cylinder_cylinder"
+                                   and not r["method"].endswith("/core_expr")), default=0))
     for g, r in found:
         # Per query and method; the key without the query names the method's worst case
         # (found is sorted by decreasing gap, so the first row of a method is its worst).
