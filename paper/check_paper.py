@@ -11,6 +11,8 @@ Fails (exit status 1, one line per problem) when
   - a manifest records a study file (CSV or JSON) whose SHA-256 differs from the file now in
     RESULTS_DIR, or that is missing there (the table or figure is stale);
   - the manifests do not cover the study's main CSV files;
+  - paper.tex quotes a count as a share of another ("\\stat{A} of \\stat{B}") whose unit in
+    generated/units.json differs or is missing (searches of methods, answers of instances);
   - paper.tex does not include the errors against k (REQUIRED_INCLUDES), or a line of
     generated/tables/error_by_k.tex shows wrong/decided counts other than those recounted here from
     RESULTS_DIR/instances.csv (per bin of k, hard-case families, Boolean or three-valued);
@@ -202,6 +204,20 @@ def check_uniform_table(path, uniform, problems):
         problems.append(f"{UNIFORM_TABLE}: leaves out the queries {' '.join(missing)} of uniform.csv")
 
 
+def check_count_units(tex, units, problems):
+    """Every "\\stat{A} of \\stat{B}" (or "of the") in the text compares counts of one unit:
+    both keys have a unit in generated/units.json (make_tables.py's COUNT_UNITS) and it is the
+    same, so that searches are not quoted as a share of methods, nor answers of instances."""
+    text = " ".join(re.sub(r"(?<!\\)%.*", "", line) for line in tex.splitlines())
+    pairs = re.findall(r"\\stat\{([^}]*)\}\s+of\s+(?:the\s+)?\\stat\{([^}]*)\}", text)
+    for a, b in pairs:
+        ua, ub = units.get(a), units.get(b)
+        if ua is None or ub is None or ua != ub:
+            problems.append(f"paper.tex: \\stat{{{a}}} of \\stat{{{b}}} compares {ua or 'a count without a unit'} "
+                            f"with {ub or 'a count without a unit'} (generated/units.json)")
+    return len(pairs)
+
+
 def included_files(tex):
     """Paths that the .tex includes: \\input{...} and \\includegraphics[...]{...}, comments removed."""
     text = "\n".join(re.sub(r"(?<!\\)%.*", "", line) for line in tex.splitlines())
@@ -228,6 +244,12 @@ def main():
     for rel in REQUIRED_INCLUDES:
         if rel not in files:
             problems.append(f"paper.tex does not include {rel}")
+    upath = os.path.join(out, "generated", "units.json")
+    if os.path.exists(upath):
+        with open(upath) as f:
+            check_count_units(tex, json.load(f), problems)
+    else:
+        problems.append("generated/units.json is missing")
     if os.path.exists(os.path.join(out, K_TABLE)) and os.path.exists(os.path.join(res, "instances.csv")):
         check_k_table(os.path.join(out, K_TABLE), os.path.join(res, "instances.csv"), problems)
     if os.path.exists(os.path.join(out, TIMING_TABLE)) and os.path.exists(os.path.join(res, "instances.csv")):

@@ -8,6 +8,7 @@ hunt.csv, timing.csv, timing_stages.csv, timing_thread.csv, uniform.csv, failure
 libraries), nothing else, and writes into OUT_DIR:
   numbers.tex     one \\newcommand per quoted number, named \\csname stat:KEY\\endcsname and
                   read in the text through \\stat{KEY} (paper.tex makes an unknown key an error)
+  units.json      the unit of every quoted count (instances, answers, searches, methods, cells)
   tables/*.tex    the tables the paper \\input's
   manifest.json   the SHA-256 of every file read (relative to RESULTS_DIR) and of every file
                   written (relative to OUT_DIR); paper/check_paper.py compares it with the study
@@ -131,6 +132,34 @@ class Numbers:
                 raise RuntimeError(f"bad key {k}")
             lines.append(f"\\expandafter\\newcommand\\csname stat:{k}\\endcsname{{{self.values[k]}}}")
         return "\n".join(lines) + "\n"
+
+
+# The unit of a quoted count, by the first fields of its key (the longest rule that matches
+# wins): what it counts, so that paper/check_paper.py can refuse "A of B" in the text where A and
+# B count different things (searches against methods, answers against instances). Written to
+# units.json for every key that has one.
+COUNT_UNITS = {
+    "inst": "instances", "check:constructed": "instances", "check:undecided": "instances", "stagecount": "instances",
+    "paired": "instances", "timingpaired": "instances", "terr:paired": "instances",
+    "inst:maxk": None, "inst:families": "families", "inst:familyquery": "families",
+    "check:construction": "answers", "check:gapsign": "answers",
+    "n": "answers", "fp": "answers", "fn": "answers", "cls": "answers", "wrong": "answers", "wrong3": "answers",
+    "undec": "answers", "err": "answers", "fntouch": "answers", "conv": "answers", "alg": "answers",
+    "unsplit": "answers", "cdiff": "answers", "split": "answers", "kwrong": "answers", "kn": "answers",
+    "famn": "answers", "famfp": "answers", "famfn": "answers", "famwrong": "answers", "famcls": "answers",
+    "pn": "answers", "pfp": "answers", "pfn": "answers", "pcls": "answers",
+    "udecided": "answers", "ufp": "answers", "ufn": "answers", "ucls": "answers",
+    "hunt:searches": "searches", "hunt:found": "searches", "hunt:methodswrong": "methods", "hunt:methodcount": "methods",
+    "map": "cells", "map3": "cells", "mapcls": "cells", "mapundec": "cells",
+}
+
+
+def count_unit(key):
+    """The unit of COUNT_UNITS of a number's key, or None (not a count, or not one the rules
+    name): the rule of its first two fields before that of its first."""
+    fields = key.split(":")
+    two = ":".join(fields[:2])
+    return COUNT_UNITS[two] if two in COUNT_UNITS else COUNT_UNITS.get(fields[0])
 
 
 # ---- aggregation ------------------------------------------------------------------------------
@@ -935,9 +964,11 @@ def main():
     write(out, "tables/hunt_inputs.tex", "\n".join(lines) + "\n")
 
     write(out, "numbers.tex", N.text())
+    units = {k: count_unit(k) for k in sorted(N.values) if count_unit(k)}
+    write(out, "units.json", json.dumps(units, indent=1, sort_keys=True) + "\n")
 
     write_manifest("paper/make_tables.py", res, out, WRITTEN)
-    print(f"make_tables: {len(N.values)} numbers and {len(WRITTEN) - 1} tables written to {out}")
+    print(f"make_tables: {len(N.values)} numbers and {len(WRITTEN) - 2} tables written to {out}")
     return 0
 
 

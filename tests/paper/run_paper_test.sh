@@ -6,7 +6,7 @@
 # table of errors against k shows a count other than instances.csv's, and one whose figures are
 # stale, and one whose timing table or paired table of the seeds shows a count other than
 # instances.csv's, or whose table of the uniform sample shows a count other than uniform.csv's,
-# and one with a table wider than the text.
+# and one with a table wider than the text, and one quoting a count as a share of another unit's.
 #   run_paper_test.sh CERTCYL_BINARY SOURCE_DIR WORK_DIR
 set -euo pipefail
 certcyl=$1
@@ -101,6 +101,16 @@ if check "$work/wide" "$work/tiny" > "$work/wide.log"; then
 fi
 grep -q '^check_paper: LaTeX: Overfull \\hbox' "$work/wide.log" || { cat "$work/wide.log"; echo "FAILED: no report of the overfull table"; exit 1; }
 
+# A count quoted as a share of a count of another unit (methods of searches): the check must
+# fail, naming both.
+cp -a "$work/paper" "$work/units"
+printf '%s\n' '\stat{hunt:methodswrong} of the \stat{hunt:searches} searches' >> "$work/units/paper.tex"
+if check "$work/units" "$work/tiny" > "$work/units.log"; then
+  echo "FAILED: a count of methods quoted as a share of searches was accepted"; exit 1
+fi
+grep -q '^check_paper: paper.tex: .stat{hunt:methodswrong} of .stat{hunt:searches} compares methods with searches' "$work/units.log" \
+  || { cat "$work/units.log"; echo "FAILED: no report of the mixed units"; exit 1; }
+
 # Stale figures: another study (a different seed) replaces the results, the tables are
 # regenerated from it but the figures are not: the check must fail on the figures.
 "$certcyl" study --size tiny --seed 2 --out "$work" --name tiny2 --no-plots --threads 2 > "$work/study2.log"
@@ -113,4 +123,4 @@ grep -q "^check_paper: figures: stale" "$work/stale.log" || { cat "$work/stale.l
 if grep -q "^check_paper: generated: stale" "$work/stale.log"; then
   cat "$work/stale.log"; echo "FAILED: the regenerated tables were reported stale"; exit 1
 fi
-echo "paper test: built, checked, and the checker rejects a missing and a stale figure, a paper without the errors against k, and a wrong count in their table, the timing table, the paired table or the uniform sample's table, and a table wider than the text"
+echo "paper test: built, checked, and the checker rejects a missing and a stale figure, a paper without the errors against k, and a wrong count in their table, the timing table, the paired table or the uniform sample's table, a table wider than the text and a count quoted as a share of another unit's"
