@@ -855,12 +855,26 @@ def map_compact(rows, methods, n, name, desc, out):
         ax.set_title(label + ("" if m == "certified" else f"\n{int(fp.sum())} FP, {int(fn.sum())} FN{classes}"), fontsize=6.5)
     for ax in list(axes.flat)[len(panels):]:
         ax.axis("off")
+    # The ulp scale: the perturbations of the two coordinates (the CSV's d0_ulps, d1_ulps) at the
+    # grid's ends and centre, on the left column and on the lowest panel of each column.
+    d0 = {int(r["i"]): int(float(r["d0_ulps"])) for r in rows}
+    d1 = {int(r["j"]): int(float(r["d1_ulps"])) for r in rows}
+    ticks = [0, n // 2, n - 1]
+    for k, ax in enumerate(list(axes.flat)[:len(panels)]):
+        if k % cols == 0:
+            ax.set_yticks(ticks, [str(d1.get(t, "")) for t in ticks], fontsize=5)
+            ax.set_ylabel("2nd coordinate (ulps)", fontsize=5.5, labelpad=1)
+        if k + cols >= len(panels):
+            ax.set_xticks(ticks, [str(d0.get(t, "")) for t in ticks], fontsize=5)
+            ax.set_xlabel("1st coordinate (ulps)", fontsize=5.5, labelpad=1)
+        ax.tick_params(length=2, pad=1)
     map_legend(fig, 6.5)
     save(fig, out, f"map_compact_{name}",
          f"The failure map of {desc} in at most 8 panels: the certified answer first, then one panel per distinct answer "
          "pattern (methods with the same answer on every cell share a panel, the title names the first two); magenta cells are "
          "wrong, counted in the title as false positives (FP) and false negatives (FN); cyan cells are class mismatches "
-         "(touching for overlapping or the reverse), counted as class for a three-valued method.",
+         "(touching for overlapping or the reverse), counted as class for a three-valued method. The axes give the two "
+         "perturbed coordinates' offsets in ulps.",
          rect=(0, 0.08, 1, 1), dpi=150)
 
 
