@@ -4,7 +4,8 @@
     /usr/bin/python3 paper/make_tables.py RESULTS_DIR OUT_DIR
 
 Reads the study's CSV files (instances.csv, inputs.csv, summary.csv, summary_families.csv,
-hunt.csv, timing.csv, timing_stages.csv, timing_thread.csv, uniform.csv, failure_maps/*.csv) and machine.json (the run's description: compiler, CPU,
+hunt.csv, timing.csv, timing_stages.csv, timing_thread.csv, uniform.csv, failure_maps/*.csv), Core_Diagnostics
+when the study wrote one, and machine.json (the run's description: compiler, CPU,
 libraries), nothing else, and writes into OUT_DIR:
   numbers.tex     one \\newcommand per quoted number, named \\csname stat:KEY\\endcsname and
                   read in the text through \\stat{KEY} (paper.tex makes an unknown key an error)
@@ -150,7 +151,7 @@ COUNT_UNITS = {
     "pn": "answers", "pfp": "answers", "pfn": "answers", "pcls": "answers",
     "udecided": "answers", "ufp": "answers", "ufn": "answers", "ucls": "answers",
     "hunt:searches": "searches", "hunt:found": "searches", "hunt:methodswrong": "methods", "hunt:methodcount": "methods",
-    "map": "cells", "map3": "cells", "mapcls": "cells", "mapundec": "cells",
+    "map": "cells", "map3": "cells", "mapcls": "cells", "mapundec": "cells", "core": "warnings",
 }
 
 
@@ -962,6 +963,21 @@ def main():
     if len(lines) == 1:
         lines.append("\\item[--] no wrong answer was found by the search.")
     write(out, "tables/hunt_inputs.tex", "\n".join(lines) + "\n")
+
+    # CORE::Expr's warnings (Core_Diagnostics, written only when there are any: one line each,
+    # "CORE WARNING (at FILE: LINE): MESSAGE").
+    core = Counter()
+    cpath = os.path.join(res, "Core_Diagnostics")
+    if os.path.exists(cpath):
+        note_read(cpath)
+        with open(cpath, errors="replace") as f:
+            for line in f:
+                if line.strip():
+                    core[line.rsplit("): ", 1)[-1].strip()] += 1
+    N["core:warnings"] = str(sum(core.values()))
+    N["core:zerodivisor"] = str(core.get("possible zero divisor!", 0))
+    N["core:negsqrt"] = str(core.get("possible negative sqrt!", 0))
+    N["core:other"] = str(sum(core.values()) - core.get("possible zero divisor!", 0) - core.get("possible negative sqrt!", 0))
 
     write(out, "numbers.tex", N.text())
     units = {k: count_unit(k) for k in sorted(N.values) if count_unit(k)}
