@@ -9,7 +9,8 @@ when the study wrote one, and machine.json (the run's description: compiler, CPU
 libraries), nothing else, and writes into OUT_DIR:
   numbers.tex     one \\newcommand per quoted number, named \\csname stat:KEY\\endcsname and
                   read in the text through \\stat{KEY} (paper.tex makes an unknown key an error)
-  units.json      the unit of every quoted count (instances, answers, searches, methods, cells)
+  units.json      the unit of every quoted count (instances, answers, searches, methods, cells),
+                  null for another number
   tables/*.tex    the tables the paper \\input's
   manifest.json   the SHA-256 of every file read (relative to RESULTS_DIR) and of every file
                   written (relative to OUT_DIR); paper/check_paper.py compares it with the study
@@ -138,7 +139,7 @@ class Numbers:
 # The unit of a quoted count, by the first fields of its key (the longest rule that matches
 # wins): what it counts, so that paper/check_paper.py can refuse "A of B" in the text where A and
 # B count different things (searches against methods, answers against instances). Written to
-# units.json for every key that has one.
+# units.json for every key (null for a number that is not a count).
 COUNT_UNITS = {
     "inst": "instances", "check:constructed": "instances", "check:undecided": "instances", "stagecount": "instances",
     "paired": "instances", "timingpaired": "instances", "terr:paired": "instances",
@@ -980,7 +981,7 @@ def main():
     N["core:other"] = str(sum(core.values()) - core.get("possible zero divisor!", 0) - core.get("possible negative sqrt!", 0))
 
     write(out, "numbers.tex", N.text())
-    units = {k: count_unit(k) for k in sorted(N.values) if count_unit(k)}
+    units = {k: count_unit(k) for k in sorted(N.values)}  # null: not a count
     write(out, "units.json", json.dumps(units, indent=1, sort_keys=True) + "\n")
 
     write_manifest("paper/make_tables.py", res, out, WRITTEN)
