@@ -83,6 +83,20 @@ def sci(x, digits=2):
     return f"${ms}\\cdot 10^{{{e}}}$"
 
 
+def sci_down(x, digits=2):
+    """sci(x) of a lower bound x >= 0, its significant digits rounded down (toward 0), so that
+    "|G| >= sci_down(x)" stays true: 3.47 reads 3.4, not 3.5."""
+    if x is None or not math.isfinite(x) or x <= 0:
+        return sci(x, digits)
+    e = math.floor(math.log10(x)) - (digits - 1)
+    m = math.floor(x / 10 ** e)
+    while m * 10 ** e > x:  # the division's rounding, either way
+        m -= 1
+    while (m + 1) * 10 ** e <= x:
+        m += 1
+    return sci(m * 10 ** e, digits)
+
+
 def ns_text(ns):
     return cr.ns_tex(ns)
 
@@ -921,7 +935,7 @@ def main():
         for m in (f"{r['query']}:{r['method']}", r["method"]):
             if f"huntgap:{m}" in N.values:
                 continue
-            N[f"huntgap:{m}"] = sci(g)
+            N[f"huntgap:{m}"] = sci_down(g)
             N[f"huntfamily:{m}"] = tex_escape(r["start_family"])
             N[f"huntanswer:{m}"] = tex_escape(r["answer"])
             N[f"huntcert:{m}"] = tex_escape(r["certified_answer"])
@@ -941,7 +955,7 @@ def main():
                                       if tally.get(r["method"]) is not None and tally[r["method"]].kind == "peer"]
     for g, r in shown:
         lines.append(f"{method_tex(r['method'])} & {QUERY_TEX.get(r['query'], tex_escape(r['query']))} & {tex_escape(r['start_family'])} & "
-                     f"{tex_escape(r['answer'])} & {tex_escape(r['certified_answer'])} & {gap_size_tex(r['query'])} {sci(g)}\\\\")
+                     f"{tex_escape(r['answer'])} & {tex_escape(r['certified_answer'])} & {gap_size_tex(r['query'])} {sci_down(g)}\\\\")
     lines += ["\\bottomrule", "\\end{tabular}"]
     write(out, "tables/hunt.tex", "\n".join(lines) + "\n")
     N["hunt:shown"] = str(len(shown))
@@ -959,7 +973,7 @@ def main():
         xs = r["input_hex"].split()
         body = ", ".join(hexfloat_tex(x) for x in xs)
         lines.append(f"\\item[{QUERY_TEX[q]}] {method_tex(r['method'])} answers {tex_escape(r['answer'])}, certified "
-                     f"{tex_escape(r['certified_answer'])}, {gap_size_tex(q)} {sci(g)}. Input ({len(xs)} coordinates, "
+                     f"{tex_escape(r['certified_answer'])}, {gap_size_tex(q)} {sci_down(g)}. Input ({len(xs)} coordinates, "
                      f"layout of Section~\\ref{{sec:study}}): {{\\footnotesize\\raggedright {body}\\par}}")
     if len(lines) == 1:
         lines.append("\\item[--] no wrong answer was found by the search.")
