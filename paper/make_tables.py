@@ -973,8 +973,8 @@ def main():
         xs = r["input_hex"].split()
         body = ", ".join(hexfloat_tex(x) for x in xs)
         lines.append(f"\\item[{QUERY_TEX[q]}] {method_tex(r['method'])} answers {tex_escape(r['answer'])}, certified "
-                     f"{tex_escape(r['certified_answer'])}, {gap_size_tex(q)} {sci_down(g)}. Input ({len(xs)} coordinates, "
-                     f"layout of Section~\\ref{{sec:study}}): {{\\footnotesize\\raggedright {body}\\par}}")
+                     f"{tex_escape(r['certified_answer'])}, {gap_size_tex(q)} {sci_down(g)}. Input ({len(xs)} coordinates): "
+                     f"{{\\footnotesize\\raggedright {body}\\par}}")
     if len(lines) == 1:
         lines.append("\\item[--] no wrong answer was found by the search.")
     write(out, "tables/hunt_inputs.tex", "\n".join(lines) + "\n")
