@@ -252,7 +252,7 @@ void check_direction_filter(const World& w, const D3& D0, FilterTally& t) {
   const cd::StaticDirection sd = cd::static_direction(w.s, D);
   const StaticSign g = cd::static_separation_sign(sd);
   const Vec3<Q> E = exact(D);
-  const CGAL::Sign truth = cd::separation_sign(w.q, E);
+  const CGAL::Sign truth = cd::separation_sign_exact(w.q, E);
   if (truth == CGAL::ZERO) ++t.zero;
   if (g == StaticSign::unknown) {
     ++t.unknown;

@@ -349,3 +349,56 @@ BOOST_AUTO_TEST_CASE(span_from_the_world_frame_equals_span_in_gmpq) {
   }
   BOOST_TEST(compared > 3500);
 }
+
+// separation_sign_bounds (c exact, then 128-bit MPFR bounds rounded outwards) against the exact
+// squaring, in Q, in the ring frame (Mpzf) and in the integer frame (Gmpz), at each touching
+// configuration's contact normal with the second cylinder moved along it by 2^-k either way
+// (k = 4 ... 400; one way separates, the other overlaps): whenever the bounds decide, the sign is
+// the exact one; they decide every move up to 2^-60 and leave every move from 2^-140 on (and
+// the exact zeros at k = 0) to the squaring, unless both roots vanish (then they are exact).
+BOOST_AUTO_TEST_CASE(separation_bounds_agree_with_the_exact_sign) {
+  namespace cd = certcyl::detail;
+  int decided = 0, positive = 0, open = 0;
+  for (const TouchingCase& base : base_touching_cases()) {
+    const TouchingCase c = moved(base, rotations()[1], {Q(2, 7), Q(-3), Q(1, 3)});
+    for (const int k : {0, 4, 20, 60, 100, 110, 118, 126, 140, 200, 400}) {
+      for (const int side : {1, -1}) {
+        const Q t = k == 0 ? Q(0) : Q(side) / Q(CGAL::Gmpz(1) << k);
+        const Cylinder<Q> b = translate(c.b, t * c.normal);
+        BOOST_TEST_CONTEXT(base.name << " moved by " << side << " 2^-" << k) {
+          const CylinderPair<Q> e = CylinderPair<Q>::make(c.a, b);
+          const CGAL::Sign exact = cd::separation_sign_exact(e, c.normal);
+          if (k == 0) BOOST_TEST(exact == CGAL::ZERO);
+          const std::optional<CGAL::Sign> q = cd::separation_sign_bounds(e, c.normal);
+          const std::optional<RingFrame> f = RingFrame::from_rational(c.a, b);
+          BOOST_TEST_REQUIRE(f.has_value());
+          const Vec3<M> Dm = cd::ring_direction(c.normal);
+          const std::optional<CGAL::Sign> m = cd::separation_sign_bounds(f->pair, Dm);
+          BOOST_TEST(cd::separation_sign_exact(f->pair, Dm) == exact);
+          const cd::IntegerPair z(e);
+          const Vec3<CGAL::Gmpz> Dz = Dm.map([](const M& x) { return CGAL::Gmpz(mpq_numref(static_cast<CGAL::Gmpq>(x).mpq())); });
+          const std::optional<CGAL::Sign> g = cd::separation_sign_bounds(z.d, Dz);
+          BOOST_TEST(cd::separation_sign_exact(z.d, Dz) == exact);
+          for (const std::optional<CGAL::Sign>& s : {q, m, g}) {
+            if (s) {
+              BOOST_TEST(*s == exact);
+              ++decided;
+              positive += *s == CGAL::POSITIVE;
+            } else {
+              ++open;
+            }
+          }
+          // With D x A0 = D x A1 = 0 (a cap-cap contact's axis normal) both roots are zero and
+          // the bounds are exact: they decide at every k.
+          const Vec3<Q> zero{0, 0, 0};
+          const bool roots_vanish = cross(c.normal, e.A0) == zero && cross(c.normal, e.A1) == zero;
+          if (roots_vanish || (k > 0 && k <= 60)) BOOST_TEST((q && m && g));
+          if (!roots_vanish && k >= 140) BOOST_TEST((!q && !m && !g));
+        }
+      }
+    }
+  }
+  BOOST_TEST(positive > 0);
+  BOOST_TEST(open > 0);
+  BOOST_TEST(decided > open);
+}

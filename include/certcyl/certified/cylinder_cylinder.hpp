@@ -21,7 +21,8 @@
 //
 // Every check runs in up to three arithmetics, the first that decides wins (result.certified_by):
 // the semi-static double filter (detail/cylinder_static_filter.hpp; binary64 input only, in a
-// frame scaled by a power of two), Interval_nt, then Gmpq. Each decides only what it proves.
+// frame scaled by a power of two), Interval_nt, then Gmpq (a direction's sign there, and in the
+// ring frames' Mpzf, first by outward-rounded MPFR bounds). Each decides only what it proves.
 //
 // Stages, in order; the first that proves an answer decides (result.stage):
 //   midpoints        Delta = 0: the common midpoint is interior to both.
@@ -1434,7 +1435,9 @@ class CylinderCylinderSolver {
   // zero (at most `max_precision`; the best direction is found in closed form, a few evaluations
   // at any precision). The next plane goes through the witness found, else through the support
   // point: up to six planes, more while each gives a witness, up to twelve at a cap of 4,096 bits
-  // and one more for each doubling of the cap; more bits for the same plane do not count as a
+  // and one more for each doubling of the cap, fewer when the planes fall into a 2-cycle (a
+  // point back within 2^-16 of the one two planes before, at the same precision: the two
+  // alternate, each only refined); more bits for the same plane do not count as a
   // plane (the planes through witnesses on a face of j's support converge, as Newton's method on
   // i's rim circle, to where that face crosses the rim, and the wedge's curvature error with
   // them: each plane needs about twice the bits of the last, and a rim-rim contact 2^-k off
@@ -1532,6 +1535,9 @@ class CylinderCylinderSolver {
         // A plane is a function of its point and starting precision: back to the point of the
         // last plane at its starting precision (so none of the two raised it), they would repeat.
         if (before && next == before->first && precision == before->second) break;
+        // Back within 2^-16 of the last plane's point after a step 2^16 times longer: the planes
+        // alternate between two points, a 2-cycle that only refines them.
+        if (before && precision == before->second && returns_to(next, before->first, y)) break;
         before = std::pair{y, start};
         y = next;
         start = precision;
@@ -1539,6 +1545,20 @@ class CylinderCylinderSolver {
       }
     }
     return false;
+  }
+
+  // Whether b is back within 2^-16 of a after a step from y: |b - a| < 2^-16 |b - y| (max norms,
+  // compared by binade).
+  template <class R>
+  static bool returns_to(const Point3<R>& b, const Point3<R>& a, const Point3<R>& y) {
+    const auto top = [](const Vec3<R>& v) {
+      long t = std::numeric_limits<long>::min();
+      for (const R* c : {&v.x, &v.y, &v.z})
+        if (!CGAL::is_zero(*c)) t = std::max(t, binade(*c));
+      return t;
+    };
+    const long back = top(b - a), step = top(b - y);
+    return step != std::numeric_limits<long>::min() && (back == std::numeric_limits<long>::min() || back + 16 < step);
   }
 
   // Cylinder j of the exact pair and the other one, i, with their axes and squared lengths.

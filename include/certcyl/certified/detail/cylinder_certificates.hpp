@@ -12,7 +12,9 @@
 //   separation_sign(D)  sign of |D.T| - phi2(D) = c - sqrt(p) - sqrt(q) with
 //                         c = |D.T| - |D.A0| - |D.A1|,  p = 4 r0^2 |D x A0|^2 / A0.A0,
 //                         q = 4 r1^2 |D x A1|^2 / A1.A1,
-//                       decided by squaring (sign_c_minus_roots). POSITIVE: D separates
+//                       decided by squaring (sign_c_minus_roots), in the exact types after
+//                       outward-rounded 128-bit MPFR bounds (separation_sign_bounds) left it
+//                       open. POSITIVE: D separates
 //                       (phi* < 1). ZERO: phi(D) = D.Delta, so phi* <= 1 (not overlapping).
 //                       Degree: c is 2 in D and the input; the final comparison is degree 8 in
 //                       D and 12 in the input (after clearing the denominators A_i.A_i).
@@ -34,7 +36,11 @@
 
 #include <CGAL/FPU.h>
 #include <CGAL/Interval_nt.h>
+#include <CGAL/Gmpq.h>
+#include <CGAL/Gmpz.h>
+#include <CGAL/Mpzf.h>
 #include <gmp.h>
+#include <mpfr.h>
 
 #include <cmath>
 #include <limits>
@@ -136,12 +142,102 @@ SeparationTerms<NT> separation_terms(const CylinderPair<NT>& d, const Vec3<NT>& 
   }
 }
 
-// Sign of |D.T| - phi2(D): POSITIVE when D separates the cylinders, ZERO when it supports
-// both at a common plane (phi(D) = |D.Delta|).
+// Sign of |D.T| - phi2(D) by squaring (sign_c_minus_roots), in NT.
 template <class NT>
-CGAL::Sign separation_sign(const CylinderPair<NT>& d, const Vec3<NT>& D) {
+CGAL::Sign separation_sign_exact(const CylinderPair<NT>& d, const Vec3<NT>& D) {
   const SeparationTerms<NT> t = separation_terms(d, D);
   return sign_c_minus_roots(t.c, t.p, t.q);
+}
+
+template <class NT>
+inline constexpr bool is_exact_ring_v = std::is_same_v<NT, CGAL::Gmpz> || std::is_same_v<NT, CGAL::Mpzf> || std::is_same_v<NT, Rational>;
+
+// x rounded to MPFR in the direction rnd, for the exact types Gmpz, Mpzf and Rational.
+template <class NT>
+void mpfr_set_exact(mpfr_t y, const NT& x, mpfr_rnd_t rnd) {
+  if constexpr (std::is_same_v<NT, CGAL::Gmpz>) {
+    mpfr_set_z(y, x.mpz(), rnd);
+  } else if constexpr (std::is_same_v<NT, Rational>) {
+    mpfr_set_q(y, x.mpq(), rnd);
+  } else {
+    const CGAL::Gmpq q = static_cast<CGAL::Gmpq>(x);
+    mpfr_set_q(y, q.mpq(), rnd);
+  }
+}
+
+// A bound on 2 r |x| / sqrt(AA) (r, AA > 0) in MPFR: below it for rnd = MPFR_RNDD, above it for
+// MPFR_RNDU. Every operation is monotone in its operands and rounded in rnd's direction (the
+// divisor AA the other way, each |x_k| in rnd's direction), so the bound holds whatever y's
+// precision.
+template <class NT>
+void bound_radial_term(mpfr_t y, const Vec3<NT>& x, const NT& r, const NT& AA, mpfr_rnd_t rnd) {
+  const mpfr_rnd_t other = rnd == MPFR_RNDD ? MPFR_RNDU : MPFR_RNDD;
+  mpfr_t t;
+  mpfr_init2(t, mpfr_get_prec(y));
+  mpfr_set_zero(y, 1);
+  for (const NT* c : {&x.x, &x.y, &x.z}) {
+    mpfr_set_exact(t, *c, nt::sign(*c) == CGAL::NEGATIVE ? other : rnd);
+    mpfr_sqr(t, t, rnd);
+    mpfr_add(y, y, t, rnd);
+  }
+  mpfr_set_exact(t, AA, other);
+  mpfr_div(y, y, t, rnd);
+  mpfr_sqrt(y, y, rnd);
+  mpfr_set_exact(t, r, rnd);
+  mpfr_mul(y, y, t, rnd);
+  mpfr_mul_2ui(y, y, 1, rnd);
+  mpfr_clear(t);
+}
+
+// The sign of |D.T| - phi2(D) = c - sqrt(p) - sqrt(q) (separation_terms) when cheap bounds
+// decide it, for the exact types; nullopt otherwise. c (exact) decides alone when it is not
+// positive; else c - sqrt(p) - sqrt(q) lies between two 128-bit MPFR bounds whose every
+// operation is rounded outwards (bound_radial_term), and a bound of one sign decides. They leave
+// open only directions within about 2^-120 (relative to the terms) of the boundary of S, where
+// the squaring of separation_sign_exact, on numbers of tens of thousands of bits for wide
+// input, runs.
+template <class NT>
+std::optional<CGAL::Sign> separation_sign_bounds(const CylinderPair<NT>& d, const Vec3<NT>& D) {
+  static_assert(is_exact_ring_v<NT>);
+  const NT c = abs_enclosure(dot(D, d.T)) - abs_enclosure(dot(D, d.A0)) - abs_enclosure(dot(D, d.A1));
+  const CGAL::Sign sc = nt::sign(c);
+  if (sc == CGAL::NEGATIVE) return CGAL::NEGATIVE;
+  const Vec3<NT> x0 = cross(D, d.A0), x1 = cross(D, d.A1);
+  const auto zero = [](const Vec3<NT>& v) { return CGAL::is_zero(v.x) && CGAL::is_zero(v.y) && CGAL::is_zero(v.z); };
+  if (sc == CGAL::ZERO) return zero(x0) && zero(x1) ? CGAL::ZERO : CGAL::NEGATIVE;
+  constexpr mpfr_prec_t kBits = 128;
+  mpfr_t lo, hi, t;  // lo <= c - sqrt(p) - sqrt(q) <= hi
+  mpfr_init2(lo, kBits);
+  mpfr_init2(hi, kBits);
+  mpfr_init2(t, kBits);
+  mpfr_set_exact(lo, c, MPFR_RNDD);
+  mpfr_set_exact(hi, c, MPFR_RNDU);
+  for (const mpfr_rnd_t rnd : {MPFR_RNDU, MPFR_RNDD}) {
+    mpfr_ptr bound = rnd == MPFR_RNDU ? lo : hi;  // less an upper bound of a root for lo
+    const mpfr_rnd_t out = rnd == MPFR_RNDU ? MPFR_RNDD : MPFR_RNDU;
+    bound_radial_term(t, x0, d.c0.radius, d.AA0, rnd);
+    mpfr_sub(bound, bound, t, out);
+    bound_radial_term(t, x1, d.c1.radius, d.AA1, rnd);
+    mpfr_sub(bound, bound, t, out);
+  }
+  const int s_lo = mpfr_sgn(lo), s_hi = mpfr_sgn(hi);
+  mpfr_clear(lo);
+  mpfr_clear(hi);
+  mpfr_clear(t);
+  if (s_lo > 0) return CGAL::POSITIVE;
+  if (s_hi < 0) return CGAL::NEGATIVE;
+  return std::nullopt;
+}
+
+// Sign of |D.T| - phi2(D): POSITIVE when D separates the cylinders, ZERO when it supports
+// both at a common plane (phi(D) = |D.Delta|). For the exact types, separation_sign_bounds
+// first.
+template <class NT>
+CGAL::Sign separation_sign(const CylinderPair<NT>& d, const Vec3<NT>& D) {
+  if constexpr (is_exact_ring_v<NT>) {
+    if (const std::optional<CGAL::Sign> s = separation_sign_bounds(d, D)) return *s;
+  }
+  return separation_sign_exact(d, D);
 }
 
 template <class NT>

@@ -81,6 +81,18 @@ class CornerPlane {
       const Vec3<R> k = ax <= ay && ax <= az ? Vec3<R>{one, zero, zero} : ay <= az ? Vec3<R>{zero, one, zero} : Vec3<R>{zero, zero, one};
       w = AA * k - dot(k, A) * A;
     }
+    {
+      // w rounded to 64 bits beyond the working precision and made exactly orthogonal to A again
+      // (A.A r - (r.A) A): within 2^-(p+60) of the plane through y, and a few hundred bits long
+      // where the exact w of a witness from the last plane has thousands.
+      const long p = static_cast<long>(CGAL::Gmpfr::get_default_precision());
+      Vec3<R> r;
+      {
+        GmpfrPrecision scope(p + 64);
+        r = w.map([](const R& x) { return ring_exact<R>(f(x)); });
+      }
+      w = AA * r - dot(r, A) * A;
+    }
     const R ww = dot(w, w);
     const bool far_end = nt::constant<R>(2) * along >= AA;
     CornerPlane c;
