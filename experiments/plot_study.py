@@ -267,7 +267,9 @@ def disagreement_tables(families, out):
 
 def gap_quantity(query):
     """What a query's signed gap is (src/study/gap.hpp): the depth margin G for the queries against
-    one cylinder, the log growth factor log(phi*) for cylinder pairs. Axes never pool the two."""
+    one cylinder, the log growth factor log(phi*) for cylinder pairs (the labels of
+    src/study/gap_quantity.hpp, whose names depth_margin and log_phi the command's output
+    carries). Axes never pool the two."""
     return "$\\log\\varphi^*$" if query == "cylinder_cylinder" else "depth margin $G$"
 
 

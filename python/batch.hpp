@@ -16,13 +16,14 @@ namespace certcyl::python {
 namespace py = pybind11;
 
 // The certified answers of a batch, one row per query: `answer` (int8 codes), `gap` (N x 2,
-// the certified enclosure [lo, hi] of the signed gap; None when not asked for) and for line,
+// the certified enclosure [lo, hi] of the signed gap; None when not asked for) with
+// `gap_quantity` its name (study/gap_quantity.hpp: "depth_margin" or "log_phi") and for line,
 // ray and segment queries `t_in`, `t_out` (the proved nearest doubles of the exact endpoints of
 // the parameter interval, NaN when separated; None for the other queries).
 struct BatchResult {
   std::string query;
   py::array_t<std::int8_t> answer;
-  py::object gap = py::none(), t_in = py::none(), t_out = py::none();
+  py::object gap = py::none(), gap_quantity = py::none(), t_in = py::none(), t_out = py::none();
 };
 
 void bind_line_batches(py::module_& m);

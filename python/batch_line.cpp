@@ -68,7 +68,10 @@ BatchResult line_batch(const std::string& query, const Rows& first, const Rows& 
   });
   out.t_in = std::move(t_in);
   out.t_out = std::move(t_out);
-  if (want_gap) out.gap = std::move(gap);
+  if (want_gap) {
+    out.gap = std::move(gap);
+    out.gap_quantity = py::str(std::string(study::to_string(study::gap_quantity(out.query))));
+  }
   return out;
 }
 

@@ -39,7 +39,10 @@ BatchResult solid_batch(const std::string& query, std::size_t n, unsigned thread
   for_each_row(n, threads, query, [&](std::size_t i) {
     answer[i] = static_cast<std::int8_t>(answer_code(row(i, g ? g + 2 * i : nullptr)));
   });
-  if (want_gap) out.gap = std::move(gap);
+  if (want_gap) {
+    out.gap = std::move(gap);
+    out.gap_quantity = py::str(std::string(study::to_string(study::gap_quantity(out.query))));
+  }
   return out;
 }
 

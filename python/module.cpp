@@ -37,6 +37,8 @@ PYBIND11_MODULE(_certcyl, m) {
       .def_readonly("query", &BatchResult::query, "The query's name.")
       .def_readonly("answer", &BatchResult::answer, "int8 answer codes: SEPARATED, TOUCHING, OVERLAPPING (UNDECIDED: cylinder pairs).")
       .def_readonly("gap", &BatchResult::gap, "N x 2: the certified enclosure [lo, hi] of the signed gap (None when not computed).")
+      .def_readonly("gap_quantity", &BatchResult::gap_quantity,
+                    "What gap measures: 'log_phi' (cylinder pairs) or 'depth_margin' (the other queries); None without gap.")
       .def_readonly("t_in", &BatchResult::t_in, "Line, ray, segment: the nearest double of the exact entry parameter (NaN when separated).")
       .def_readonly("t_out", &BatchResult::t_out, "Line, ray, segment: the nearest double of the exact exit parameter (NaN when separated).")
       .def("__len__", [](const BatchResult& r) { return r.answer.size(); })

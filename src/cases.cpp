@@ -12,6 +12,7 @@
 
 #include "study/families.hpp"
 #include "study/gap.hpp"
+#include "study/gap_quantity.hpp"
 #include "judge_internal.hpp"
 #include "query.hpp"
 #include "study_internal.hpp"
@@ -125,6 +126,12 @@ Case parse_case(const std::string& text) {
     if (!m.contains("seed") || !m["seed"].is_number_unsigned()) throw std::runtime_error("meta.map.seed: expected an unsigned integer");
     cell.seed = m["seed"].get<std::uint64_t>();
     if (c.family.rfind("failure_map/", 0) != 0) throw std::runtime_error("meta.map: only on a failure map's cell (family failure_map/...)");
+  if (meta.contains("gap_quantity")) {
+    const std::string_view expected = study::to_string(study::gap_quantity(c.query));
+    if (!meta["gap_quantity"].is_string() || meta["gap_quantity"].get<std::string>() != expected)
+      throw std::runtime_error("meta.gap_quantity: expected \"" + std::string(expected) + "\" for " +
+                               std::string(study::to_string(c.query)) + ", got " + meta["gap_quantity"].dump());
+  }
     c.map = cell;
   } else if (c.family.rfind("failure_map/", 0) == 0) {
     throw std::runtime_error("meta.map: missing on a failure map's cell");
@@ -194,7 +201,8 @@ ojson query_line(const Case& c) {
 
 ojson case_line(const Case& c) {
   ojson line = query_line(c);
-  line["meta"] = ojson{{"family", c.family}, {"k", c.k}, {"certified", std::string(to_string(c.certified))}, {"gap", gap_json(c)}};
+  line["meta"] = ojson{{"family", c.family}, {"k", c.k}, {"certified", std::string(to_string(c.certified))}, {"gap", gap_json(c)},
+                       {"gap_quantity", std::string(study::to_string(study::gap_quantity(c.query)))}};
   if (std::isfinite(c.t_in)) line["meta"]["t_in"] = c.t_in;
   if (c.map) line["meta"]["map"] = ojson{{"cells", c.map->cells}, {"step", c.map->step}, {"seed", c.map->seed}};
   return line;

@@ -4,13 +4,16 @@
 // uniform inputs, each depending only on the seed, its family, its query and its index) with its
 // certified answer and certified signed gap (study/gap.hpp). Its line is
 //   {"id": "<query>/<family>/<index>", "query": Q, operands..., "meta": {"family", "k",
-//    "certified", "gap": [lo, hi]}}
+//    "certified", "gap": [lo, hi], "gap_quantity"}}
 // with every coordinate a JSON number (its binary64 value, written to round trip), so
 // `certcyl query` answers it as it stands and passes "meta" through. The gap is null when it is
-// unbounded (cylinder pairs with equal midpoints). A line, ray or segment case whose certified
-// answer meets the cylinder also carries "t_in": the certified entry parameter (the nearest double
-// to the exact one; a segment's on p0 + t (p1 - p0)), which the judge scores an answer's
-// interval against (t_error_ulps, as the study scores its methods).
+// unbounded (cylinder pairs with equal midpoints); gap_quantity names what it measures
+// (study/gap_quantity.hpp: log_phi for cylinder pairs, else depth_margin). Reading a case, a
+// gap_quantity is optional (files written before it) but must be the query's when given.
+// A line, ray or segment case whose certified answer meets the cylinder also carries "t_in": the
+// certified entry parameter (the nearest double to the exact one; a segment's on p0 + t (p1 -
+// p0)), which the judge scores an answer's interval against (t_error_ulps, as the study scores
+// its methods).
 // With map_cells, the cells of the query's failure maps follow (the maps `certcyl judge` draws
 // for a plugin or a program): id "failure_map/<map>/<row>/<column>", family "failure_map/<map>",
 // k 0 and "meta.map": {"cells", "step", "seed"}; answered in an answers file, they give the

@@ -25,6 +25,7 @@
 #include <stdexcept>
 
 #include "judge_internal.hpp"
+#include "study/gap_quantity.hpp"
 
 namespace certcyl::cli::judging {
 namespace {
@@ -56,7 +57,7 @@ std::string fmt(const char* format, double v) {
 // is tight, else the interval.
 std::string gap_text(const Case& c) {
   if (!std::isfinite(c.gap_lo) || !std::isfinite(c.gap_hi)) return "log(phi*) unbounded (equal midpoints: overlapping)";
-  const std::string name = c.query == study::Query::cylinder_cylinder ? "log(phi*) " : "depth margin G ";
+  const std::string name = std::string(study::gap_label(study::gap_quantity(c.query))) + " ";
   if (c.gap_lo == c.gap_hi || std::fabs(c.gap_hi - c.gap_lo) <= 1e-3 * std::max(std::fabs(c.gap_lo), std::fabs(c.gap_hi)))
     return name + "= " + fmt("%.3g", 0.5 * c.gap_lo + 0.5 * c.gap_hi);
   return name + "between " + fmt("%.3g", c.gap_lo) + " and " + fmt("%.3g", c.gap_hi);

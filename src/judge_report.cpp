@@ -15,7 +15,10 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "cases.hpp"
 #include "judge_internal.hpp"
+#include "study/contract.hpp"
+#include "study/gap_quantity.hpp"
 #include "study_files.hpp"
 #include "study_internal.hpp"
 
@@ -43,7 +46,8 @@ std::string hunt_text(const std::string& line) {
   if (f.size() < 11) return line;
   std::string t = f[1] + ": ";
   if (f[4] != "1") return t + "no wrong answer found in " + f[3] + " inputs";
-  return t + f[5] + " where the certified answer is " + f[6] + " (" + f[7] + "), certified gap [" + f[8] + ", " + f[9] +
+  const std::string_view gap = study::gap_label(study::gap_quantity(parse_study_query(f[1])));
+  return t + f[5] + " where the certified answer is " + f[6] + " (" + f[7] + "), certified " + std::string(gap) + " [" + f[8] + ", " + f[9] +
          "], found from family " + f[2] + " in " + f[3] + " inputs";
 }
 

@@ -142,6 +142,7 @@ ojson brief_answer(const ojson& full) {
     b["interval"] = t;
   }
   if (auto it = full.find("gap"); it != full.end()) b["gap"] = *it;
+  if (auto it = full.find("gap_quantity"); it != full.end()) b["gap_quantity"] = *it;
   if (auto it = full.find("reason"); it != full.end()) b["reason"] = *it;
   return b;
 }

@@ -32,8 +32,8 @@ struct QueryOptions {
   NumberTypeSpec nt{NumberKind::double_, 53};
   bool nt_given = false;  // --nt was on the command line
   // --brief: each answer line holds only id, meta, answer, the interval of a line query as its
-  // two (proved nearest, for the certified method) doubles, the gap, and the reason
-  // of an invalid answer.
+  // two (proved nearest, for the certified method) doubles, the gap and its gap_quantity, and
+  // the reason of an invalid answer.
   bool brief = false;
   // --line-buffered: every line is answered and its answer written and flushed as soon as it is
   // read. Without it lines are answered in batches of up to 256 x threads, cut short whenever

@@ -27,6 +27,7 @@ ojson cylinder_cylinder_json(const CylinderCylinderResult& r) {
   // the midpoints coincide (phi* is undefined: overlapping at every scale).
   const CylinderGap gap = r.gap();
   out["gap"] = gap.known ? ojson::array({gap.log_lower(), gap.log_upper()}) : ojson(nullptr);
+  out["gap_quantity"] = std::string(study::to_string(study::GapQuantity::log_phi));
   ojson cert;
   if (const auto d = r.exact_direction()) cert["direction"] = exact_json(*d);
   if (const auto x = r.exact_witness()) cert["witness"] = exact_json(*x);

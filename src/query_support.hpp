@@ -38,18 +38,24 @@ inline ojson gap_json(const study::MarginEnclosure& gap) {
 // The same for a point's margin, its depth, an exact rational.
 inline ojson gap_json(const Rational& gap) { return gap_json(study::MarginEnclosure{gap, gap}); }
 
-// `answer` with "gap" placed where the cylinder pair has it: after the common fields (answer,
-// certified, method, nt) and the pair's stage, before the query's own.
+// `answer` with "gap" and "gap_quantity" (the depth margin's name, study/gap_quantity.hpp)
+// placed where the cylinder pair has them: after the common fields (answer, certified, method,
+// nt) and the pair's stage, before the query's own.
 inline ojson with_gap(const ojson& answer, const ojson& gap) {
   ojson out = ojson::object();
   bool placed = false;
+  const auto place = [&] {
+    out["gap"] = gap;
+    out["gap_quantity"] = std::string(study::to_string(study::GapQuantity::depth_margin));
+    placed = true;
+  };
   for (auto it = answer.begin(); it != answer.end(); ++it) {
     const std::string& key = it.key();
     const bool common = key == "answer" || key == "certified" || key == "method" || key == "nt" || key == "stage";
-    if (!common && !placed) out["gap"] = gap, placed = true;
+    if (!common && !placed) place();
     out[key] = it.value();
   }
-  if (!placed) out["gap"] = gap;
+  if (!placed) place();
   return out;
 }
 

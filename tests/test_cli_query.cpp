@@ -164,7 +164,7 @@ BOOST_AUTO_TEST_CASE(brief_answers) {
                        R"("cylinder": {"p0": [0,0,0], "p1": [0,0,2], "radius": 1}, "meta": {"k": 1}})"
                        "\n",
                        o);
-  BOOST_TEST(line.lines.at(0) == json::parse(R"({"id": "l", "meta": {"k": 1}, "answer": "overlapping", "interval": [-1.5, 0.5], "gap": [0.5, 0.5]})"));
+  BOOST_TEST(line.lines.at(0) == json::parse(R"({"id": "l", "meta": {"k": 1}, "answer": "overlapping", "interval": [-1.5, 0.5], "gap": [0.5, 0.5], "gap_quantity": "depth_margin"})"));
   // Two unit cylinders with parallel axes 3 apart: separated; the gap is an enclosure of log(phi*) < 0.
   const Run pair = run(R"({"id": 2, "query": "cylinder_cylinder", "a": {"p0": [0,0,0], "p1": [0,0,1], "radius": 1}, )"
                        R"("b": {"p0": [3,0,0], "p1": [3,0,1], "radius": 1}})"
@@ -172,7 +172,8 @@ BOOST_AUTO_TEST_CASE(brief_answers) {
                        o);
   const json& p = pair.lines.at(0);
   BOOST_TEST(p["answer"] == "separated");
-  BOOST_TEST(p.size() == 3u);  // id, answer, gap
+  BOOST_TEST(p.size() == 4u);  // id, answer, gap, gap_quantity
+  BOOST_TEST(p["gap_quantity"] == "log_phi");
   BOOST_TEST(p["gap"][1].get<double>() < 0);
   BOOST_TEST(p["gap"][0].get<double>() <= p["gap"][1].get<double>());
 }

@@ -2,7 +2,7 @@
 // of the depth margin G = max over the set of min(1 - q, s, 1 - s) (src/study/gap.hpp) worked
 // out in comments, irrational ones checked exactly against their closed form, and, over the study's tiny
 // cases of every query, the gap's sign against the certified answer and the gap of `certcyl
-// cases` on the same line.
+// cases` on the same line; every gap named by its quantity (depth_margin, or log_phi for pairs).
 #define BOOST_TEST_MODULE cli_query_gap
 #include <boost/test/unit_test.hpp>
 
@@ -48,8 +48,12 @@ std::string line_query(const std::string& query, const std::string& operand, con
   return R"({"query": ")" + query + R"(", )" + operand + ", " + solid + "}";
 }
 
+// Every certified answer but a cylinder pair's names its gap the depth margin.
+void check_depth_margin(const json& a) { BOOST_TEST(a["gap_quantity"] == "depth_margin", a.dump()); }
+
 // Asserts that the answer's gap is [v, v] (v a double) and its answer the one given.
 void check_exact_gap(const json& a, double v, const std::string& answer) {
+  check_depth_margin(a);
   BOOST_TEST(a["answer"] == answer, a.dump());
   BOOST_TEST_REQUIRE(a["gap"].is_array(), a.dump());
   BOOST_TEST(a["gap"][0].get<double>() == v, a.dump());
@@ -58,6 +62,7 @@ void check_exact_gap(const json& a, double v, const std::string& answer) {
 
 // Asserts that the gap encloses the rational num/den (not a double) between adjacent doubles.
 void check_enclosed_gap(const json& a, int num, int den, const std::string& answer) {
+  check_depth_margin(a);
   BOOST_TEST(a["answer"] == answer, a.dump());
   BOOST_TEST_REQUIRE(a["gap"].is_array(), a.dump());
   const double lo = a["gap"][0].get<double>(), hi = a["gap"][1].get<double>();
@@ -69,6 +74,7 @@ void check_enclosed_gap(const json& a, int num, int den, const std::string& answ
 // Asserts that the gap encloses (p + sqrt(n)) / den (irrational), checked exactly, between
 // adjacent doubles.
 void check_root_gap(const json& a, int p, int n, int den, const std::string& answer) {
+  check_depth_margin(a);
   BOOST_TEST(a["answer"] == answer, a.dump());
   BOOST_TEST_REQUIRE(a["gap"].is_array(), a.dump());
   const double lo = a["gap"][0].get<double>(), hi = a["gap"][1].get<double>();
@@ -199,10 +205,12 @@ BOOST_AUTO_TEST_CASE(points_worked_out_by_hand) {
   BOOST_TEST(far["answer"] == "separated");
   BOOST_TEST_REQUIRE(far.contains("gap"));
   BOOST_TEST(far["gap"].is_null());
+  check_depth_margin(far);
 }
 
 BOOST_AUTO_TEST_CASE(gap_follows_the_common_fields_as_for_pairs) {
-  // The member order of an answer: answer, certified, method, nt, gap, then the query's own.
+  // The member order of an answer: answer, certified, method, nt, gap, gap_quantity, then the
+  // query's own.
   QueryOptions o;
   std::istringstream in(line_query("line_cylinder", R"("line": {"origin": [0,0,0.5], "direction": [1,0,0]})", unit) + "\n" +
                         R"({"query": "point_cylinder", "point": [0,0,0.5], )" + unit + "}\n");
@@ -211,14 +219,40 @@ BOOST_AUTO_TEST_CASE(gap_follows_the_common_fields_as_for_pairs) {
   std::istringstream produced(out.str());
   std::string line;
   std::getline(produced, line);
-  BOOST_TEST(line.find(R"("nt":"exact","gap":[0.5,0.5],"interval":)") != std::string::npos, line);
+  BOOST_TEST(line.find(R"("nt":"exact","gap":[0.5,0.5],"gap_quantity":"depth_margin","interval":)") != std::string::npos, line);
   std::getline(produced, line);
-  BOOST_TEST(line.find(R"("nt":"interval","gap":[0.5,0.5],"certificate":)") != std::string::npos, line);
+  BOOST_TEST(line.find(R"("nt":"interval","gap":[0.5,0.5],"gap_quantity":"depth_margin","certificate":)") != std::string::npos,
+             line);
+}
+
+BOOST_AUTO_TEST_CASE(a_pair_names_its_gap_log_phi) {
+  // Two unit cylinders side by side, axes 3 apart: separated, log(phi*) < 0; equal midpoints:
+  // no gap, but its quantity is still named.
+  const std::string a = R"("a": {"p0": [0,0,0], "p1": [0,0,1], "radius": 1})";
+  const json apart = answer_of(R"({"query": "cylinder_cylinder", )" + a + R"(, "b": {"p0": [3,0,0], "p1": [3,0,1], "radius": 1}})");
+  BOOST_TEST(apart["answer"] == "separated");
+  BOOST_TEST(apart["gap_quantity"] == "log_phi", apart.dump());
+  BOOST_TEST(apart["gap"][1].get<double>() < 0);
+  const json same = answer_of(R"({"query": "cylinder_cylinder", )" + a + R"(, "b": {"p0": [0,0,0], "p1": [0,0,1], "radius": 1}})");
+  BOOST_TEST(same["gap"].is_null());
+  BOOST_TEST(same["gap_quantity"] == "log_phi", same.dump());
+  // --brief keeps both.
+  QueryOptions o;
+  o.brief = true;
+  std::istringstream in(R"({"id": 7, "query": "cylinder_cylinder", )" + a + R"(, "b": {"p0": [3,0,0], "p1": [3,0,1], "radius": 1}})" + "\n");
+  std::ostringstream out;
+  BOOST_TEST_REQUIRE(run_query(in, out, o, 1) == 0);
+  const json b = json::parse(out.str());
+  BOOST_TEST(b["gap_quantity"] == "log_phi", b.dump());
+  BOOST_TEST(b["gap"] == apart["gap"]);
 }
 
 BOOST_AUTO_TEST_CASE(other_methods_report_no_gap) {
   const std::string l = line_query("line_cylinder", R"("line": {"origin": [0,0,0.5], "direction": [1,0,0]})", unit);
-  for (const char* m : {"robust_double", "shene", "gullotti"}) BOOST_TEST(!answer_of(l, m).contains("gap"), m);
+  for (const char* m : {"robust_double", "shene", "gullotti"}) {
+    BOOST_TEST(!answer_of(l, m).contains("gap"), m);
+    BOOST_TEST(!answer_of(l, m).contains("gap_quantity"), m);
+  }
   BOOST_TEST(!answer_of(R"({"query": "point_cylinder", "point": [0,0,0.5], )" + unit + "}", "polynomial").contains("gap"));
   BOOST_TEST(!answer_of(R"({"query": "triangle_cylinder", "triangle": [[0,0,2],[1,0,3],[0,1,3]], )" + unit + "}", "eberly")
                   .contains("gap"));
@@ -241,6 +275,9 @@ BOOST_AUTO_TEST_CASE(the_gap_of_every_tiny_case_has_the_answers_sign_and_is_that
       BOOST_TEST(a["answer"] == c["meta"]["certified"], where);
       BOOST_TEST_REQUIRE(a.contains("gap"), where);
       BOOST_TEST(a["gap"] == c["meta"]["gap"], where);
+      const std::string quantity = q == study::Query::cylinder_cylinder ? "log_phi" : "depth_margin";
+      BOOST_TEST(a["gap_quantity"] == quantity, where);
+      BOOST_TEST(c["meta"]["gap_quantity"] == quantity, where);
       if (a["gap"].is_null()) continue;
       ++signed_gaps;
       const double lo = a["gap"][0].get<double>(), hi = a["gap"][1].get<double>();

@@ -283,6 +283,20 @@ BOOST_AUTO_TEST_CASE(a_cases_file_is_certified_again) {
   BOOST_TEST(r.err.find("changed.jsonl line 2: case '" + second["id"].get<std::string>() + "' says meta.certified " +
                         changed["meta"]["certified"].get<std::string>() + ", its certified answer is " + certified) != std::string::npos,
              r.err);
+  // A gap named by another query's quantity is an error naming the field; without the name (a
+  // file written before it) the case is read.
+  json mislabelled = second;
+  mislabelled["meta"]["gap_quantity"] = "log_phi";
+  std::ofstream(s / "mislabelled.jsonl") << lines[0] << '\n' << mislabelled.dump() << '\n' << lines[2] << '\n';
+  const Run ml = s.run(kCertcyl + " judge --cases mislabelled.jsonl --answers answers.jsonl");
+  BOOST_TEST(ml.status == 1);
+  BOOST_TEST(ml.err.find(R"(mislabelled.jsonl line 2: meta.gap_quantity: expected "depth_margin" for line_cylinder, got "log_phi")") !=
+                 std::string::npos,
+             ml.err);
+  json unnamed = second;
+  unnamed["meta"].erase("gap_quantity");
+  std::ofstream(s / "unnamed.jsonl") << lines[0] << '\n' << unnamed.dump() << '\n' << lines[2] << '\n';
+  BOOST_TEST(s.run(kCertcyl + " judge --cases unnamed.jsonl --answers answers.jsonl --name unnamed").status == 0);
   // Gap and t_in moved: the counterexamples carry the certified ones.
   json moved = second;
   moved["meta"]["gap"] = json::array({-5.0, -4.0});

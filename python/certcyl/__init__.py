@@ -142,8 +142,8 @@ class QueryResult:
     certificate: the certificate, exact rationals as Fraction (other exact values, such as
     "a + b*sqrt(c)", as strings); interval: for line, ray and segment queries, the ends of the
     parameter interval; gap: the certified signed gap [lo, hi] of a certified answer (log(phi*)
-    for cylinder pairs, the depth margin of the other queries); line: the whole answer line as a
-    dict.
+    for cylinder pairs, the depth margin of the other queries); gap_quantity: its name,
+    "log_phi" or "depth_margin" (None without a gap); line: the whole answer line as a dict.
     """
 
     _codes = {"separated": SEPARATED, "touching": TOUCHING, "overlapping": OVERLAPPING, "undecided": UNDECIDED}
@@ -158,6 +158,7 @@ class QueryResult:
         self.certificate = _exact(line.get("certificate"))
         self.interval = _exact(line.get("interval"))
         self.gap = line.get("gap")
+        self.gap_quantity = line.get("gap_quantity")
 
     def __repr__(self):
         proved = "certified" if self.certified else "not certified"

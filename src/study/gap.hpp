@@ -45,7 +45,8 @@
 // (1 - sigma*) min(r_i, h_i / 2) in both.
 //
 // Panels, tables and pages that show a gap say which of the two it is: "depth margin G" for (1),
-// "log phi*" for (2); the study never pools the two on one axis.
+// "log(phi*)" for (2); the study never pools the two on one axis. Machine-readable output names
+// them depth_margin and log_phi (study/gap_quantity.hpp).
 //
 // The study checks the gap's sign against the certified answer on every instance.
 #pragma once
@@ -65,6 +66,7 @@
 #include "certcyl/certified/line_cylinder.hpp"
 #include "certcyl/certified/triangle_cylinder.hpp"
 #include "study/contract.hpp"
+#include "study/gap_quantity.hpp"
 #include "study/instance.hpp"
 
 namespace certcyl::study {

@@ -152,6 +152,9 @@ class SameAsTheCommand(unittest.TestCase):
                     ends = q["interval"] or [math.nan, math.nan]
                     np.testing.assert_array_equal([r.t_in[i], r.t_out[i]], ends, c["id"])
                     self.assertEqual(r.gap[i].tolist(), c["meta"]["gap"], c["id"])
+                    self.assertEqual(q["gap_quantity"], c["meta"]["gap_quantity"], c["id"])
+                self.assertEqual(r.gap_quantity, "depth_margin")
+                self.assertEqual({c["meta"]["gap_quantity"] for c in cases}, {"depth_margin"})
 
     def answers_of(self, lines):
         """`certcyl query --brief`'s answers to the query lines (dicts)."""
@@ -275,8 +278,12 @@ class SameAsTheCommand(unittest.TestCase):
         as_rows = lambda c: c["p0"] + c["p1"] + [c["radius"]]
         r = certcyl.cylinder_cylinder(np.array([as_rows(c["a"]) for c in cases]), np.array([as_rows(c["b"]) for c in cases]))
         answers = [json.loads(l) for l in command(["query", "--brief"], "".join(json.dumps(c) + "\n" for c in cases)).splitlines()]
+        self.assertEqual(r.gap_quantity, "log_phi")
+        self.assertIsNone(certcyl.cylinder_cylinder(np.array([as_rows(cases[0]["a"])]), np.array([as_rows(cases[0]["b"])]),
+                                                    gap=False).gap_quantity)
         for i, (c, q) in enumerate(zip(cases, answers)):
             self.assertEqual(r.answer[i], CODES[q["answer"]], c["id"])
+            self.assertEqual((q["gap_quantity"], c["meta"]["gap_quantity"]), ("log_phi", "log_phi"), c["id"])
             # log(phi*) enclosed as the command encloses it (unbounded: equal midpoints).
             self.assertEqual(r.gap[i].tolist(), q["gap"] if q["gap"] is not None else [math.inf, math.inf], c["id"])
 
@@ -336,6 +343,8 @@ class OneExactQuery(unittest.TestCase):
         self.assertEqual((r.answer, r.code, r.certified), ("touching", T, True))
         self.assertEqual(r.certificate["point"], [Fraction(3, 5), Fraction(4, 5), Fraction(1)])
         self.assertIn("touching (certified", repr(r))
+        # On the wall, the point's depth margin is 0.
+        self.assertEqual((r.gap, r.gap_quantity), ([0.0, 0.0], "depth_margin"))
         # 0.6 as a float is not 3/5: the point is off the wall, and the method says so exactly.
         r = certcyl.query("point_cylinder", point=[0.6, 0.8, 1], cylinder={"p0": [0, 0, 0], "p1": [0, 0, 2], "radius": 1})
         self.assertNotEqual(r.answer, "touching")
@@ -345,6 +354,7 @@ class OneExactQuery(unittest.TestCase):
         r = certcyl.query("line_cylinder", method="shene", nt="double", line=line,
                           cylinder={"p0": [0, 0, 0], "p1": [0, 0, 2], "radius": 1})
         self.assertEqual((r.method, r.nt, r.certified), ("shene", "double", False))
+        self.assertEqual((r.gap, r.gap_quantity), (None, None))  # only the certified method has a gap
         with self.assertRaisesRegex(ValueError, r"cylinder.radius: must be positive, got -1"):
             certcyl.query("point_cylinder", point=[0, 0, 0], cylinder={"p0": [0, 0, 0], "p1": [0, 0, 1], "radius": -1})
         with self.assertRaisesRegex(ValueError, r"point\[0\]: not a finite number"):
