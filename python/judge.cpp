@@ -13,7 +13,8 @@
 // `error`); for a line query also (answer, t_in[, t_out]), its interval scored as an answers
 // file's. Then, as for a plugin or a program, the failure maps of the query (judge_failure_maps:
 // every cell in one call when vectorised) and the hunt for its worst input (judge_hunt, one input
-// per call), sized by map_cells and hunt_evaluations as `certcyl judge` sizes them. An exception
+// per call), sized by map_cells and hunt_evaluations as `certcyl judge` sizes them; a ray or
+// segment query judged under `contract` (`certcyl judge --contract`). An exception
 // raised by the function ends the run as a crashed plugin ends it: what was answered before it
 // is written (the maps and the hunt with their failure), and the exception is raised again
 // naming the case. The cases' calls are timed as a whole (speed.csv, the report's speed).
@@ -180,7 +181,9 @@ cli::judging::Answers answer_cases(const py::function& function, const std::vect
 // map_cells, hunt_evaluations: -1 for the size's (as `certcyl judge`), 0 for none.
 py::tuple judge(py::function function, const std::string& query, const std::string& size, std::uint64_t seed,
                 const std::vector<std::string>& families, bool vectorized, const std::string& method, const std::string& out_root,
-                const std::string& name, unsigned threads, int map_cells, long map_step, long hunt_evaluations) {
+                const std::string& name, unsigned threads, int map_cells, long map_step, long hunt_evaluations,
+                const std::string& contract_name) {
+  const study::Contract contract = cli::parse_contract(contract_name, "judge: contract");
   cli::CaseSpec spec;
   spec.query = query;
   spec.size = size;
@@ -222,15 +225,15 @@ py::tuple judge(py::function function, const std::string& query, const std::stri
       };
       const py::gil_scoped_release release;
       std::filesystem::create_directories(dir);
-      *maps = cli::judging::judge_failure_maps(dir, method, queries, source, cells, map_step, seed, std::max(1u, threads));
+      *maps = cli::judging::judge_failure_maps(dir, method, queries, source, cells, map_step, seed, std::max(1u, threads), contract);
       const long evaluations = hunt_evaluations < 0 ? cli::judging::hunt_evaluations_of_size(size) : hunt_evaluations;
-      if (evaluations > 0) hunt = cli::judging::judge_hunt(dir, method, queries, source, evaluations, seed);
+      if (evaluations > 0) hunt = cli::judging::judge_hunt(dir, method, queries, source, evaluations, seed, contract);
     }
   }
   std::ostringstream summary;
   {
     const py::gil_scoped_release release;
-    cli::judging::write_results(dir, dir, method, cases, answers, summary, maps ? &*maps : nullptr, hunt ? &*hunt : nullptr);
+    cli::judging::write_results(dir, dir, method, cases, answers, summary, maps ? &*maps : nullptr, hunt ? &*hunt : nullptr, contract);
   }
   if (error) std::rethrow_exception(error);
   return py::make_tuple(summary.str(), dir.string());
@@ -241,7 +244,7 @@ py::tuple judge(py::function function, const std::string& query, const std::stri
 void bind_judge(py::module_& m) {
   m.def("_judge", &judge, py::arg("function"), py::arg("query"), py::arg("size"), py::arg("seed"), py::arg("families"),
         py::arg("vectorized"), py::arg("method"), py::arg("out"), py::arg("name"), py::arg("threads"), py::arg("map_cells"),
-        py::arg("map_step"), py::arg("hunt_evaluations"),
+        py::arg("map_step"), py::arg("hunt_evaluations"), py::arg("contract"),
         "The in-process judge behind certcyl.judge: returns (summary table, results folder).");
 }
 

@@ -64,10 +64,28 @@ void read_coordinates(const ojson& shape, const nlohmann::json& given, const std
   }
 }
 
-// What the case is scored by, from its certified instance: the answer, the gap and t_in.
+}  // namespace
+
 void take_certified(Case& c, const study::Instance& inst) {
   c.certified = inst.certified, c.gap_lo = inst.gap_lo, c.gap_hi = inst.gap_hi, c.t_in = inst.t_in;
+  c.certified_entry = inst.certified_entry, c.certified_surface_hit = inst.certified_surface_hit;
 }
+
+study::Instance certified_instance(const Case& c) {
+  study::Instance inst;
+  inst.query = c.query;
+  inst.certified = c.certified, inst.certified_entry = c.certified_entry, inst.certified_surface_hit = c.certified_surface_hit;
+  inst.gap_lo = c.gap_lo, inst.gap_hi = c.gap_hi, inst.t_in = c.t_in;
+  return inst;
+}
+
+study::Contract parse_contract(const std::string& name, const std::string& where) {
+  for (const study::Contract c : {study::Contract::solid, study::Contract::surface_entry, study::Contract::surface_hit})
+    if (name == study::to_string(c)) return c;
+  throw std::invalid_argument(where + ": unknown contract '" + name + "' (expected solid, surface_entry or surface_hit)");
+}
+
+namespace {
 
 ojson gap_json(const Case& c) {
   if (!std::isfinite(c.gap_lo) || !std::isfinite(c.gap_hi)) return nullptr;
@@ -108,6 +126,12 @@ Case parse_case(const std::string& text) {
   } else {
     throw std::runtime_error("meta.gap: expected [lo, hi] or null");
   }
+  if (meta.contains("gap_quantity")) {
+    const std::string_view expected = study::to_string(study::gap_quantity(c.query));
+    if (!meta["gap_quantity"].is_string() || meta["gap_quantity"].get<std::string>() != expected)
+      throw std::runtime_error("meta.gap_quantity: expected \"" + std::string(expected) + "\" for " +
+                               std::string(study::to_string(c.query)) + ", got " + meta["gap_quantity"].dump());
+  }
   if (meta.contains("t_in")) {
     if (!meta["t_in"].is_number()) throw std::runtime_error("meta.t_in: expected a JSON number");
     c.t_in = meta["t_in"].get<double>();
@@ -126,12 +150,6 @@ Case parse_case(const std::string& text) {
     if (!m.contains("seed") || !m["seed"].is_number_unsigned()) throw std::runtime_error("meta.map.seed: expected an unsigned integer");
     cell.seed = m["seed"].get<std::uint64_t>();
     if (c.family.rfind("failure_map/", 0) != 0) throw std::runtime_error("meta.map: only on a failure map's cell (family failure_map/...)");
-  if (meta.contains("gap_quantity")) {
-    const std::string_view expected = study::to_string(study::gap_quantity(c.query));
-    if (!meta["gap_quantity"].is_string() || meta["gap_quantity"].get<std::string>() != expected)
-      throw std::runtime_error("meta.gap_quantity: expected \"" + std::string(expected) + "\" for " +
-                               std::string(study::to_string(c.query)) + ", got " + meta["gap_quantity"].dump());
-  }
     c.map = cell;
   } else if (c.family.rfind("failure_map/", 0) == 0) {
     throw std::runtime_error("meta.map: missing on a failure map's cell");

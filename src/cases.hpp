@@ -31,6 +31,7 @@
 
 #include "certcyl/answer.hpp"
 #include "study/instance.hpp"
+#include "study/methods.hpp"  // Contract
 
 namespace certcyl::cli {
 
@@ -58,6 +59,9 @@ struct Case {
   std::string family;
   long long k = 0;
   Answer certified = Answer::undecided;
+  // The certified answer under the ray-cast contracts (study/contract.hpp): for rays and
+  // segments; the solid answer for the other queries.
+  Answer certified_entry = Answer::undecided, certified_surface_hit = Answer::undecided;
   double gap_lo = 0, gap_hi = 0;
   double t_in = std::numeric_limits<double>::quiet_NaN();  // line queries that meet: the certified entry parameter
   std::vector<double> x;       // study/instance.hpp layout
@@ -67,6 +71,22 @@ struct Case {
 
 // The study query named `name`; throws std::invalid_argument listing the names.
 study::Query parse_study_query(const std::string& name);
+
+// What the case is scored by, from its certified instance: the answers under the three
+// contracts, the gap and t_in.
+void take_certified(Case& c, const study::Instance& inst);
+
+// The instance holding the case's certified answers (under every contract), as the study's
+// outcome_of and certified_under read them.
+study::Instance certified_instance(const Case& c);
+
+// The contract named `name` (solid, surface_entry, surface_hit; study/contract.hpp); throws
+// std::invalid_argument naming `where` and listing the names.
+study::Contract parse_contract(const std::string& name, const std::string& where);
+
+// Whether a contract other than solid is defined for the query: rays and segments (the ray
+// casts' queries); any other query is judged under the solid contract.
+constexpr bool has_ray_contracts(study::Query q) { return q == study::Query::ray_cylinder || q == study::Query::segment_cylinder; }
 
 // The planned instances of the spec, certified, in the study's order. Throws
 // std::invalid_argument on an unknown query, family or size.

@@ -240,6 +240,10 @@ int main(int argc, char** argv) {
       ->check(finite_in(0.0, 1e6));
   // The failure maps' and the hunt's sizes (the hunt's in the range of the study's
   // hunt_evaluations).
+  judge->add_option("--contract", judge_options.contract,
+                    "What the method's hit promises for rays and segments: solid (default; the set meets the solid\n"
+                    "cylinder), surface_entry (entering from outside: a ray starting inside is a miss) or surface_hit\n"
+                    "(a surface point at t > 0, an exit counting); default: the plugin's certcyl_plugin_contract, else solid");
   add_map_options(judge, judge_options.map_cells, judge_options.map_step,
                   "Failure maps of N x N cells, N from 2 to 1024 (--plugin and --exec; default the size's: 16 tiny,\n"
                   "32 small, 64 default, 128 large; --answers: the cases file's map cells, and only their N)");

@@ -39,7 +39,8 @@ void check_method_name(const std::string& name, const std::string& where) {
 // (cells, step, seed), each cell's answer looked up by its id; a cell the cases file does not
 // hold, or holds with another input than the map's, is an error of the exchange for that map.
 judging::MapsResult answered_maps(const std::filesystem::path& dir, const std::string& method, const std::vector<Case>& given,
-                                  const std::map<std::string, std::optional<judging::Answered>>& answer_of, unsigned threads) {
+                                  const std::map<std::string, std::optional<judging::Answered>>& answer_of, unsigned threads,
+                                  study::Contract contract) {
   const MapCell m = *given.front().map;
   std::vector<study::Query> queries;
   std::map<std::string, const Case*> by_id;
@@ -65,7 +66,7 @@ judging::MapsResult answered_maps(const std::filesystem::path& dir, const std::s
     }
     return a;
   };
-  return judging::judge_failure_maps(dir, method, queries, source, m.cells, m.step, m.seed, threads);
+  return judging::judge_failure_maps(dir, method, queries, source, m.cells, m.step, m.seed, threads, contract);
 }
 
 // The study's figures with the judged method's point (JudgeOptions::study_dir), into
@@ -97,6 +98,14 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
     }
     std::optional<PluginInfo> plugin;
     if (!o.plugin_file.empty()) plugin = inspect_plugin(o.plugin_file);
+    study::Contract contract = plugin && plugin->contract ? *plugin->contract : study::Contract::solid;
+    if (!o.contract.empty()) {
+      const study::Contract given = parse_contract(o.contract, "--contract");
+      if (plugin && plugin->contract && *plugin->contract != given)
+        throw std::invalid_argument("--contract " + o.contract + ": the plugin " + plugin->name + " declares " +
+                                    std::string(study::to_string(*plugin->contract)) + " (certcyl_plugin_contract)");
+      contract = given;
+    }
     if (!o.label.empty())
       check_method_name(o.label, "--label");
     else if (plugin)
@@ -151,6 +160,13 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
       });
       if (cases.empty()) throw std::runtime_error("--plugin: " + plugin->name + " exports none of the cases' queries");
     }
+
+    // A contract given on the command line must apply to some case (a plugin's declared one
+    // simply does not apply to its other queries).
+    if (!o.contract.empty() && contract != study::Contract::solid &&
+        std::none_of(cases.begin(), cases.end(), [](const Case& c) { return has_ray_contracts(c.query); }))
+      throw std::invalid_argument("--contract " + o.contract +
+                                  ": defined for ray_cylinder and segment_cylinder only, and no case is one of them");
 
     // This shard's cases: every n-th from the i-th, as the study deals its instances.
     const bool sharded = o.shard_count > 1;
@@ -210,7 +226,7 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
       } else if (!o.answers_file.empty() && cell_answers.empty()) {
         maps->note = "an answers file gives them when the cases file holds the maps' cells (certcyl cases --map-cells N)";
       } else if (!o.answers_file.empty()) {
-        *maps = answered_maps(folder, method, given_cells, cell_answers, std::max(1u, o.spec.threads));
+        *maps = answered_maps(folder, method, given_cells, cell_answers, std::max(1u, o.spec.threads), contract);
       } else if (!answers.failure.empty()) {
         maps->note = "not drawn, the method having failed on the cases";
       } else {
@@ -223,14 +239,15 @@ int run_judge(const JudgeOptions& o, std::ostream& out, std::ostream& err) {
         else
           source = [&](const std::vector<Case>& cells) { return run_plugin(o.plugin_file, cells, timeout); };
         *maps = judge_failure_maps(sharded ? partial : folder, method, queries, source, map_cells, o.map_step, o.spec.seed,
-                                   std::max(1u, o.spec.threads));
+                                   std::max(1u, o.spec.threads), contract);
         const long evaluations = o.hunt_evaluations < 0 ? hunt_evaluations_of_size(o.spec.size) : o.hunt_evaluations;
-        if (evaluations > 0) hunt = judge_hunt(folder, method, queries, source, evaluations, o.spec.seed);
+        if (evaluations > 0) hunt = judge_hunt(folder, method, queries, source, evaluations, o.spec.seed, contract);
       }
     }
     // A complete shard is renamed from its temporary name below: the printed paths name the result.
     const fs::path written = sharded ? partial : folder;
-    write_results(written, sharded && answers.failure.empty() ? shard_folder : written, method, cases, answers, out, maps ? &*maps : nullptr, hunt ? &*hunt : nullptr);
+    write_results(written, sharded && answers.failure.empty() ? shard_folder : written, method, cases, answers, out, maps ? &*maps : nullptr,
+                  hunt ? &*hunt : nullptr, contract);
     out.flush();
     if (!answers.failure.empty()) {
       err << "certcyl judge: " << answers.failure << '\n';

@@ -3,7 +3,8 @@
 //
 // The answers come from one of three sources: a file of {"id", "answer"} lines (--answers), a
 // program answering `certcyl query` lines on its standard input (--exec), or a C plugin
-// (certcyl/plugin.h, --plugin). The cases come from a cases file (--cases, written by
+// (certcyl/plugin.h, --plugin). The method's contract (--contract, or the plugin's) says which
+// certified answer its rays and segments are judged against. The cases come from a cases file (--cases, written by
 // `certcyl cases`) or are made in process (--query, --family, --size, --seed).
 //
 // A program or plugin that gives no answer for `timeout_seconds` is killed (its whole process
@@ -36,6 +37,11 @@ struct JudgeOptions {
   std::string name = "judge";
   std::string out_root = "results";
   std::string label;             // the method's name in the results; empty: from the source
+  // --contract: what the method's positive answer to a ray or segment promises
+  // (study/contract.hpp); its ray and segment cases, maps and hunt are judged under it, the
+  // other queries under solid. Empty: the plugin's certcyl_plugin_contract, else solid. A given
+  // contract other than solid needs a ray or segment case, and must agree with the plugin's.
+  std::string contract;
   double timeout_seconds = 60;   // --timeout; 0: no limit
   int shard_index = 0, shard_count = 1;
   // The failure maps (judge_maps.cpp; --plugin and --exec, unsharded runs; --map-cells,

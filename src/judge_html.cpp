@@ -533,6 +533,14 @@ void write_report_page(const std::filesystem::path& file, const Judgement& j) {
       << ". <a href=\"speed.csv\">speed.csv</a> holds it per query in the columns of the study's summary.csv (kind "
          "<i>judged</i>; its last column, <i>mean_ns</i>, is this mean where summary.csv has a median), to draw it on "
          "the study's speed-against-error figure beside the built-in methods.</p>\n";
+  if (j.contract == study::Contract::surface_entry)
+    h << "<p id=\"contract\">Contract: <b>surface_entry</b>. The method declared that a ray or segment hits only when it enters "
+         "the cylinder from outside; one starting inside the cylinder or on its boundary is judged correct when it reports no "
+         "hit. The other queries are judged as solids.</p>\n";
+  else if (j.contract == study::Contract::surface_hit)
+    h << "<p id=\"contract\">Contract: <b>surface_hit</b>. The method declared that a ray or segment hits when it reaches the "
+         "cylinder's surface at a positive parameter, an exit counting; it is judged against that answer. The other queries "
+         "are judged as solids.</p>\n";
   if (!j.failure.empty())
     h << "<p><b>Not every case was judged:</b> " << escape(j.failure) << ". The counts below are of the cases judged before.</p>\n";
   h << "<p>Contents: <a href=\"#tested\">what was tested</a>, <a href=\"#families\">failure rate per family</a>, "

@@ -128,11 +128,13 @@ Answers read_answers(std::istream& in, const std::string& label, const std::vect
 // or gives no answer within `timeout`.
 Answers run_exec(const std::string& command, const std::vector<Case>& cases, const Timeout& timeout);
 
-// A plugin's name and the study queries it exports (certcyl_plugin_<query>); throws
-// std::runtime_error when it cannot be loaded or exports none.
+// A plugin's name, the study queries it exports (certcyl_plugin_<query>) and the contract it
+// declares (certcyl_plugin_contract, optional); throws std::runtime_error when it cannot be
+// loaded or exports none, std::invalid_argument when its contract is none of the names.
 struct PluginInfo {
   std::string name;
   std::vector<study::Query> queries;
+  std::optional<study::Contract> contract;
 };
 PluginInfo inspect_plugin(const std::string& path);
 // Runs the plugin on the cases in a child process; every case's query must be one it exports.
@@ -177,8 +179,10 @@ std::vector<Case> map_cell_cases(const std::vector<study::Query>& queries, int c
 // The study's failure maps (study_maps.cpp: map_grids) of the given queries, each cell certified
 // and answered by `source`, written to dir/failure_maps/<name>.csv and .json as the study writes
 // them (one method column, `method`), with dir/failure_maps.csv counting each map's failures.
+// A cell is wrong under `contract` (contract_for); the maps show the method's own answers.
 MapsResult judge_failure_maps(const std::filesystem::path& dir, const std::string& method, const std::vector<study::Query>& queries,
-                              const AnswerSource& source, int cells, long step, std::uint64_t seed, unsigned threads);
+                              const AnswerSource& source, int cells, long step, std::uint64_t seed, unsigned threads,
+                              study::Contract contract = study::Contract::solid);
 
 // The hunt for the judged method's worst input (judge_maps.cpp, the study's hunt_worst of
 // study_hunt.cpp): per query, `evaluations` inputs (a quarter for cylinder pairs) each answered
@@ -191,8 +195,10 @@ struct HuntResult {
 long hunt_evaluations_of_size(const std::string& size);
 // A hunt.csv row in words: the query, the worst wrong answer and its certified gap.
 std::string hunt_text(const std::string& line);
+// Ray and segment queries are hunted under `contract` (hunt_worst's), the others under solid.
 HuntResult judge_hunt(const std::filesystem::path& dir, const std::string& method, const std::vector<study::Query>& queries,
-                      const AnswerSource& source, long evaluations, std::uint64_t seed);
+                      const AnswerSource& source, long evaluations, std::uint64_t seed,
+                      study::Contract contract = study::Contract::solid);
 
 // The judgement of one query and family (family "all": the query's), as families.csv counts
 // it: the outcomes by the study's name, the failures (false positives and negatives) and the
@@ -230,6 +236,8 @@ struct Judgement {
   const HuntResult* hunt = nullptr;  // the hunt, when there was one
   double ns_per_query = std::numeric_limits<double>::quiet_NaN();  // Answers::ns_per_query
   std::string timing;
+  // The method's contract (study/contract.hpp), under which its ray and segment cases are judged.
+  study::Contract contract = study::Contract::solid;
 };
 
 // A proportion as the summary table and the page print it ("12.3%").
@@ -248,9 +256,17 @@ double gap_size(const Case& c);
 // "report: shown/index.html" on `out`; `shown` is where the files will be when the command ends
 // (a shard's folder is written under a temporary name and renamed when complete).
 // With `maps`, the summary and the page also report the failure maps (judge_failure_maps).
+// The ray and segment cases are judged under `contract` (the study's outcome_of and
+// certified_under; the other queries under the solid one), and a counterexample's meta then also
+// names the contract and the certified answer under it.
 void write_results(const std::filesystem::path& dir, const std::filesystem::path& shown, const std::string& method,
                    const std::vector<Case>& cases, const Answers& answers, std::ostream& out, const MapsResult* maps = nullptr,
-                   const HuntResult* hunt = nullptr);
+                   const HuntResult* hunt = nullptr, study::Contract contract = study::Contract::solid);
+
+// The contract a case is judged under: the method's for a ray or segment, else solid.
+inline study::Contract contract_for(const Case& c, study::Contract method_contract) {
+  return has_ray_contracts(c.query) ? method_contract : study::Contract::solid;
+}
 
 
 // Writes `file`, one self-contained HTML page (no script, no external resource: the figures are

@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "judge_internal.hpp"
+#include "study/contract.hpp"
 #include "study/gap.hpp"
 #include "study_files.hpp"
 #include "study_internal.hpp"
@@ -53,9 +54,7 @@ std::vector<Case> map_cell_cases(const std::vector<study::Query>& queries, int c
            std::to_string(cell % static_cast<std::size_t>(cells));
     c.query = g.query;
     c.family = "failure_map/" + g.name;
-    c.certified = inst.certified;
-    c.gap_lo = inst.gap_lo;
-    c.gap_hi = inst.gap_hi;
+    take_certified(c, inst);
     c.x = std::move(inst.x);
     c.line = n + 1;
     c.map = MapCell{cells, step, seed};
@@ -67,7 +66,8 @@ std::vector<Case> map_cell_cases(const std::vector<study::Query>& queries, int c
 }
 
 MapsResult judge_failure_maps(const fs::path& dir, const std::string& method, const std::vector<study::Query>& queries,
-                              const AnswerSource& source, int cells, long step, std::uint64_t seed, unsigned threads) {
+                              const AnswerSource& source, int cells, long step, std::uint64_t seed, unsigned threads,
+                              study::Contract contract) {
   MapsResult result;
   std::vector<detail::MapGrid> grids;
   std::vector<std::string> lines;
@@ -123,6 +123,7 @@ MapsResult judge_failure_maps(const fs::path& dir, const std::string& method, co
     for (std::size_t cell = 0; cell < per_map; ++cell) {
       const Case& c = all[m * per_map + cell];
       const auto& a = answers[m * per_map + cell];
+      // The map shows the solid answer; a cell is judged under the contract.
       const char certified = detail::answer_code(study::three_valued(c.certified));
       mj.certified += certified;
       char code = '.';
@@ -132,7 +133,7 @@ MapsResult judge_failure_maps(const fs::path& dir, const std::string& method, co
         ++mj.evaluated;
         if (c.certified != Answer::undecided) {
           ++mj.decided;
-          const study::Outcome o = study::judge(a->output, c.certified);
+          const study::Outcome o = study::judge(a->output, study::certified_under(certified_instance(c), contract_for(c, contract)));
           mj.false_positive += o == study::Outcome::false_positive;
           mj.false_negative += o == study::Outcome::false_negative;
           wrong = study::disagrees(o);
@@ -164,7 +165,7 @@ long hunt_evaluations_of_size(const std::string& size) {
 }
 
 HuntResult judge_hunt(const fs::path& dir, const std::string& method, const std::vector<study::Query>& queries, const AnswerSource& source,
-                      long evaluations, std::uint64_t seed) {
+                      long evaluations, std::uint64_t seed, study::Contract contract) {
   HuntResult result;
   std::size_t calls = 0;
   for (const study::Query q : queries) {
@@ -192,7 +193,7 @@ HuntResult judge_hunt(const fs::path& dir, const std::string& method, const std:
       }
       return a.answers[0]->output;
     };
-    result.lines.push_back(detail::hunt_worst(method, q, seed, budget, run, {}));
+    result.lines.push_back(detail::hunt_worst(method, q, seed, budget, run, {}, has_ray_contracts(q) ? contract : study::Contract::solid));
   }
   std::ofstream csv(dir / "hunt.csv");
   csv << detail::kHuntHeader << '\n';

@@ -147,9 +147,16 @@ PluginInfo inspect_plugin(const std::string& path) {
     info.name = s ? s : "";
   }
   if (info.name.empty()) info.name = path;
+  // The optional contract (certcyl/plugin.h), copied before the library is closed.
+  std::optional<std::string> contract;
+  if (void* fn = ::dlsym(handle, "certcyl_plugin_contract")) {
+    const char* s = reinterpret_cast<NameFn>(fn)();
+    contract = s ? s : "(null)";
+  }
   for (Query q : study::kQueries)
     if (const char* s = symbol_of(q); s && ::dlsym(handle, s)) info.queries.push_back(q);
   ::dlclose(handle);
+  if (contract) info.contract = parse_contract(*contract, "--plugin: " + path + ": certcyl_plugin_contract()");
   if (info.queries.empty())
     throw std::runtime_error("--plugin: " + path + " exports no query (certcyl_plugin_line_cylinder, ..._ray_cylinder, "
                              "..._segment_cylinder, ..._triangle_cylinder, ..._cylinder_cylinder)");

@@ -124,7 +124,7 @@ double t_error_of(const Answered& a, const Case& c) {
 
 void write_results(const fs::path& dir, const fs::path& shown, const std::string& method, const std::vector<Case>& cases,
                    const Answers& answers, std::ostream& out, const MapsResult* maps,
-                   const HuntResult* hunt) {
+                   const HuntResult* hunt, study::Contract contract) {
   fs::create_directories(dir);
   std::map<std::pair<std::string, std::string>, FamilyJudgement> by_family;  // (query, family)
   std::map<std::string, FamilyJudgement> by_query;
@@ -137,13 +137,14 @@ void write_results(const fs::path& dir, const fs::path& shown, const std::string
   j.hunt = hunt;
   j.ns_per_query = answers.ns_per_query;
   j.timing = answers.timing;
+  j.contract = contract;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     if (!answers.answers[i]) continue;
     ++j.judged;
     const Case& c = cases[i];
-    study::Instance inst;
-    inst.certified = c.certified;
-    const std::string outcome = detail::outcome_of(answers.answers[i]->output, inst);
+    const study::Instance inst = certified_instance(c);
+    const study::Contract under = contract_for(c, contract);
+    const std::string outcome = detail::outcome_of(answers.answers[i]->output, inst, under);
     const std::string query(study::to_string(c.query));
     const double t_error = t_error_of(*answers.answers[i], c);
     for (FamilyJudgement* n : {&by_family[{query, c.family}], &by_query[query]}) {
@@ -151,7 +152,7 @@ void write_results(const fs::path& dir, const fs::path& shown, const std::string
       ++n->outcomes[outcome];
       if (std::isfinite(t_error)) n->t_errors.push_back(t_error);
     }
-    if (c.certified != Answer::undecided && study::disagrees(study::judge(answers.answers[i]->output, c.certified)))
+    if (c.certified != Answer::undecided && study::disagrees(study::judge(answers.answers[i]->output, study::certified_under(inst, under))))
       counterexamples.push_back({&c, answers.answers[i]->answer, outcome});
   }
   auto judged_row = [](const std::string& query, const std::string& family, FamilyJudgement r) {
@@ -176,7 +177,9 @@ void write_results(const fs::path& dir, const fs::path& shown, const std::string
   for (const char* o : kOutcomes) csv << ',' << o;
   csv << ",failures,failure_rate,failure_rate_lo95,failure_rate_hi95,t_errors,t_error_median_ulps,t_error_max_ulps\n";
   std::ostringstream table;
-  table << "certcyl judge: " << method << ", " << j.judged << " of " << cases.size() << " cases judged\n";
+  table << "certcyl judge: " << method << ", " << j.judged << " of " << cases.size() << " cases judged";
+  if (contract != study::Contract::solid) table << ", rays and segments under the contract " << study::to_string(contract);
+  table << '\n';
   char line[256];
   std::snprintf(line, sizeof line, "%-24s %-20s %6s %6s %6s %6s %6s %6s %6s %6s %6s  %s\n", "query", "family", "cases", "agree",
                 "f.pos", "f.neg", "mism.", "undec.", "error", "inval.", "uncert", "failure rate [95% CI]");
@@ -226,6 +229,10 @@ void write_results(const fs::path& dir, const fs::path& shown, const std::string
     l["meta"]["answer"] = e.answer;
     l["meta"]["outcome"] = e.outcome;
     l["meta"]["method"] = method;
+    if (const study::Contract under = contract_for(*e.c, contract); under != study::Contract::solid) {
+      l["meta"]["contract"] = std::string(study::to_string(under));
+      l["meta"]["contract_answer"] = std::string(to_string(study::certified_under(certified_instance(*e.c), under)));
+    }
     cx << l.dump() << '\n';
     j.counterexamples.push_back(e);
   }

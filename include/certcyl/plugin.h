@@ -12,7 +12,15 @@
  * interval of a line query when the answer is not separated (may be left unwritten: it starts as
  * NaN). `certcyl judge` scores t[0] against the certified entry parameter, in ulps of
  * max(|t*|, 1) (families.csv's t_error columns), when the answer and the certified answer both
- * say the line meets the cylinder. */
+ * say the line meets the cylinder.
+ *
+ * A plugin may also export certcyl_plugin_contract, returning what its positive answer to a ray
+ * or segment promises (the study's contracts, src/study/contract.hpp): "solid" (the default: the
+ * set meets the closed solid cylinder), "surface_entry" (a ray cast that reports entering the
+ * cylinder from outside: a ray or segment starting in the cylinder is a miss) or "surface_hit"
+ * (the first surface point at a positive parameter, an exit counting). Its ray and segment
+ * answers are judged against the certified answer under that contract; the other queries under
+ * the solid one. `certcyl judge --contract` says the same for an answers file or a program. */
 #ifndef CERTCYL_PLUGIN_H
 #define CERTCYL_PLUGIN_H
 
@@ -29,6 +37,7 @@ extern "C" {
 /* a cylinder is 7 doubles: p0[3], p1[3], radius; a triangle 9 doubles; t[2] receives the
    parameter interval of a line query when the answer is not separated (may be ignored) */
 const char* certcyl_plugin_name(void);
+const char* certcyl_plugin_contract(void); /* optional: "solid", "surface_entry" or "surface_hit" */
 int certcyl_plugin_cylinder_cylinder(const double a[7], const double b[7]);
 int certcyl_plugin_line_cylinder(const double origin[3], const double direction[3], const double c[7], double t[2]);
 int certcyl_plugin_ray_cylinder(const double origin[3], const double direction[3], const double c[7], double t[2]);

@@ -220,7 +220,7 @@ class JudgeResult:
 
 
 def judge(function, query="ray_cylinder", size="small", *, vectorized=False, seed=1, families=(), method=None,
-          out="results", name="judge", threads=1, map_cells=None, map_step=1, hunt_evaluations=None):
+          out="results", name="judge", threads=1, map_cells=None, map_step=1, hunt_evaluations=None, contract="solid"):
     """Judges a Python implementation of a query as ``certcyl judge`` judges a program.
 
     The cases are those of ``certcyl cases --query QUERY --size SIZE --seed SEED [--family F ...]``
@@ -241,6 +241,12 @@ def judge(function, query="ray_cylinder", size="small", *, vectorized=False, see
     small, 64 default, 128 large; 0: none) and the hunt for its worst input (hunt_evaluations
     inputs, a quarter for cylinder pairs; None: the size's, 20 tiny, 150 small, 1000 default,
     5000 large; 0: none), with the same calls (every cell in one call when vectorized).
+
+    contract: what a hit promises for ray_cylinder and segment_cylinder, as ``certcyl judge
+    --contract`` (src/study/contract.hpp): "solid" (the set meets the solid cylinder),
+    "surface_entry" (entering from outside: a ray starting inside is a miss) or "surface_hit" (a
+    surface point at t > 0, an exit counting); the answers are judged against the certified
+    answer under it.
 
     Writes OUT/NAME/ (families.csv, counterexamples.jsonl, answers.jsonl, summary.txt, the maps
     in failure_maps/ and failure_maps.csv, hunt.csv, and the one-page report index.html) and
@@ -263,7 +269,11 @@ def judge(function, query="ray_cylinder", size="small", *, vectorized=False, see
     evaluations = count(hunt_evaluations, "hunt_evaluations", 1, 100_000_000)
     if isinstance(map_step, bool) or int(map_step) != map_step or not 1 <= int(map_step) <= 1_000_000_000:
         raise ValueError(f"judge: map_step: expected an integer from 1 to 10^9, got {map_step!r}")
+    if contract not in ("solid", "surface_entry", "surface_hit"):
+        raise ValueError(f"judge: contract: expected solid, surface_entry or surface_hit, got {contract!r}")
+    if contract != "solid" and query not in ("ray_cylinder", "segment_cylinder"):
+        raise ValueError(f"judge: contract {contract}: defined for ray_cylinder and segment_cylinder only, got {query}")
     label = method or getattr(function, "__qualname__", None) or "python"
     summary, folder = _certcyl._judge(function, query, str(size), int(seed), list(families), bool(vectorized), label,
-                                      str(out), str(name), int(threads), cells, int(map_step), evaluations)
+                                      str(out), str(name), int(threads), cells, int(map_step), evaluations, contract)
     return JudgeResult(summary, folder)

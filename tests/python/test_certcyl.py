@@ -430,6 +430,33 @@ class Judge(unittest.TestCase):
         with open(os.path.join(result.folder, "index.html"), encoding="utf-8") as f:
             self.assertIn(f"<b>{self.meeting} failure{'' if self.meeting == 1 else 's'}</b>", f.read())
 
+    def test_a_ray_cast_is_judged_under_its_contract(self):
+        # A ray cast reporting entries only, built from the module's certified queries: the
+        # certified solid answer, and no hit when the origin lies in the cylinder (point_cylinder
+        # not separated). Under surface_entry it is never wrong; under solid its misses from
+        # inside are false negatives, counted here from the same certified queries.
+        def entry(origins, directions, cylinders):
+            solid = certcyl.ray_cylinder(origins, directions, cylinders, gap=False).answer
+            inside = certcyl.point_cylinder(origins, cylinders, gap=False).answer != S
+            return np.where(inside, S, solid)
+        cases = [json.loads(l) for l in command(["cases", "--query", "ray_cylinder", "--size", "tiny"], "").splitlines()]
+        o = np.array([c["ray"]["origin"] for c in cases])
+        cyl = np.array([c["cylinder"]["p0"] + c["cylinder"]["p1"] + [c["cylinder"]["radius"]] for c in cases])
+        starts_in = (certcyl.point_cylinder(o, cyl, gap=False).answer != S) & \
+            (np.array([c["meta"]["certified"] for c in cases]) != "separated")
+        self.assertGreater(int(starts_in.sum()), 0)  # the tiny cases hold rays starting in the cylinder
+        options = dict(vectorized=True, out=self.tmp.name, map_cells=0, hunt_evaluations=0)
+        under_entry = certcyl.judge(entry, "ray_cylinder", "tiny", name="entry", contract="surface_entry", **options)
+        self.assertEqual(under_entry.family("ray_cylinder")["failures"], 0)
+        self.assertIn("under the contract surface_entry", under_entry.summary)
+        under_solid = certcyl.judge(entry, "ray_cylinder", "tiny", name="solid", **options)
+        total = under_solid.family("ray_cylinder")
+        self.assertEqual((total["false_negative"], total["false_positive"]), (int(starts_in.sum()), 0))
+        with self.assertRaisesRegex(ValueError, "judge: contract: expected solid, surface_entry or surface_hit, got 'entry'"):
+            certcyl.judge(entry, "ray_cylinder", "tiny", contract="entry", **options)
+        with self.assertRaisesRegex(ValueError, "judge: contract surface_hit: defined for ray_cylinder and segment_cylinder only"):
+            certcyl.judge(entry, "line_cylinder", "tiny", contract="surface_hit", **options)
+
     def test_judged_as_the_command_judges_the_same_answers(self):
         # A naive double test (the distance of the line to the axis' line, caps ignored), judged
         # in process, and its answers to the same cases written to an answers file and judged by
