@@ -1,18 +1,14 @@
-// machine.json: the compiler, flags, CPU, commit, libraries and options of a study run.
+// machine.json: the compiler, flags, CPU, commit (of the build), libraries and options of a study
+// run.
 #include <cstdio>
 #include <ctime>
 #include <fstream>
 
 #include <CGAL/version.h>
 
+#include "certcyl_build_commit.hpp"  // generated at build time: CERTCYL_BUILD_COMMIT
 #include "study_internal.hpp"
 
-#ifndef CERTCYL_SOURCE_DIR
-#define CERTCYL_SOURCE_DIR "."
-#endif
-#ifndef CERTCYL_GIT_COMMIT
-#define CERTCYL_GIT_COMMIT "unknown"
-#endif
 #ifndef CERTCYL_CXX_FLAGS
 #define CERTCYL_CXX_FLAGS "unknown"
 #endif
@@ -30,17 +26,6 @@ std::string cpu_model() {
   return "unknown";
 }
 
-std::string run_command(const std::string& cmd) {
-  std::string out;
-  if (FILE* p = popen(cmd.c_str(), "r")) {
-    char buf[256];
-    while (fgets(buf, sizeof buf, p)) out += buf;
-    pclose(p);
-  }
-  while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
-  return out;
-}
-
 }  // namespace
 
 nlohmann::ordered_json machine_json(const StudyOptions& o, const std::vector<std::string>& peers) {
@@ -49,9 +34,9 @@ nlohmann::ordered_json machine_json(const StudyOptions& o, const std::vector<std
   j["flags"] = CERTCYL_CXX_FLAGS;
   j["cpu"] = cpu_model();
   j["hardware_threads"] = std::thread::hardware_concurrency();
-  std::string commit = run_command(std::string("git -C '") + CERTCYL_SOURCE_DIR + "' rev-parse HEAD 2>/dev/null");
-  const std::string dirty = commit.empty() ? "" : run_command(std::string("git -C '") + CERTCYL_SOURCE_DIR + "' status --porcelain --untracked-files=no 2>/dev/null");
-  j["commit"] = commit.empty() ? std::string(CERTCYL_GIT_COMMIT) : commit + (dirty.empty() ? "" : "+modified");
+  // The commit the binary was built from ("+modified": tracked files differed from it), not
+  // the source folder's state when the study runs.
+  j["commit"] = CERTCYL_BUILD_COMMIT;
   j["cgal"] = CGAL_VERSION_STR;
   j["peers"] = peers;
   j["options"] = {{"name", o.name}, {"size", o.size}, {"seed", o.seed}, {"threads", o.threads},
