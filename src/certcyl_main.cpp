@@ -160,7 +160,9 @@ int main(int argc, char** argv) {
   study->add_option("--name", study_options.name, "Results folder name under --out (default: the size)");
   study->add_option("--out", study_options.out_root, "Results root (default: results)");
   study->add_option("--config", study_options.config_file, "JSON configuration (per_family, map_cells, map_step, hunt_evaluations, uniform_per_query, methods, families, size, seed, name)");
-  study->add_option("--size", study_options.size, "tiny, small, default, large, or instances per family and query");
+  study->add_option("--size", study_options.size,
+                    "tiny, small, default, large, or N instances per family and query (the failure maps and hunt\n"
+                    "of the smallest preset with at least N per family, large's beyond; 1000 N uniform per query)");
   study->add_option("--seed", study_options.seed, "Random seed (default 1)")
       ->check(CLI::Validator([](std::string& s) { return certcyl::cli::integer_error(s, 0, UINT64_MAX); }, "UINT64"));
   study->add_option("--threads", study_options.threads, "Worker threads (default 2; 0 = all cores)")
@@ -238,12 +240,12 @@ int main(int argc, char** argv) {
                     "Seconds --exec's program or --plugin's function may take for one answer; then it is killed,\n"
                     "the answers before it are kept and the judge exits 1 naming the line (default 60; 0: no limit)")
       ->check(finite_in(0.0, 1e6));
-  // The failure maps' and the hunt's sizes (the hunt's in the range of the study's
-  // hunt_evaluations).
   judge->add_option("--contract", judge_options.contract,
                     "What the method's hit promises for rays and segments: solid (default; the set meets the solid\n"
                     "cylinder), surface_entry (entering from outside: a ray starting inside is a miss) or surface_hit\n"
                     "(a surface point at t > 0, an exit counting); default: the plugin's certcyl_plugin_contract, else solid");
+  // The failure maps' and the hunt's sizes (the hunt's in the range of the study's
+  // hunt_evaluations).
   add_map_options(judge, judge_options.map_cells, judge_options.map_step,
                   "Failure maps of N x N cells, N from 2 to 1024 (--plugin and --exec; default the size's: 16 tiny,\n"
                   "32 small, 64 default, 128 large; --answers: the cases file's map cells, and only their N)");

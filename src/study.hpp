@@ -11,7 +11,9 @@ namespace certcyl::cli {
 struct StudyOptions {
   std::string name;                  // results/<name>; default: the size
   std::string out_root = "results";
-  std::string size = "default";      // tiny | small | default | large | N (instances per family and query)
+  // tiny | small | default | large | N: N instances per family and query, with the maps and the
+  // hunt of the smallest preset holding at least N per family (large's beyond), 1000 N uniform.
+  std::string size = "default";
   std::uint64_t seed = 1;
   unsigned threads = 2;
   std::string config_file;           // JSON; --size, --seed and --name given override its keys

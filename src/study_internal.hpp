@@ -84,7 +84,8 @@ std::string x_hex(const std::vector<double>& x);
 // ---- Configuration and plan (study_plan.cpp) ---------------------------------------------------
 
 // The configuration file fills the options (the command line's --size, --seed and --name win),
-// then the size preset what is left unset.
+// then the size preset what is left unset (an integer size N: N per family, the maps and the
+// hunt of the smallest preset with at least N per family, large's beyond, 1000 N uniform).
 void apply_size(StudyOptions& o);
 void apply_config(StudyOptions& o);
 

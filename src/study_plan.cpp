@@ -132,10 +132,19 @@ void apply_size(StudyOptions& o) {
   if (!parse_count(o.size, kMaxPerFamily, n) || n < 1)
     throw std::invalid_argument("--size: expected tiny, small, default, large or an integer in [1, " + std::to_string(kMaxPerFamily) + "], got '" +
                                 o.size + "'");
+  // N instances per family and query; the failure maps and the hunt of the smallest preset with
+  // at least N per family (large's beyond it), so that N never draws larger maps than the preset
+  // it lies under; the uniform sample 1000 N per query.
   const long count = static_cast<long>(n);
+  const Preset* under = &presets[3];
+  for (const Preset& p : presets)
+    if (count <= p.per_family) {
+      under = &p;
+      break;
+    }
   if (o.per_family == 0) o.per_family = count;
-  if (o.map_cells == 0) o.map_cells = 256;
-  if (o.hunt_evaluations == 0) o.hunt_evaluations = std::min(kMaxHuntEvaluations, std::max(20L, 12 * count));
+  if (o.map_cells == 0) o.map_cells = under->map_cells;
+  if (o.hunt_evaluations == 0) o.hunt_evaluations = under->hunt;
   if (o.uniform_per_query < 0) o.uniform_per_query = std::min(kMaxUniformPerQuery, 1000 * count);
 }
 

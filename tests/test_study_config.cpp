@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "study.hpp"
+#include "study_internal.hpp"
 
 using namespace certcyl;
 namespace fs = std::filesystem;
@@ -172,6 +173,39 @@ BOOST_AUTO_TEST_CASE(options_checked) {
   BOOST_TEST(cli::integer_error("0x10", 0, 1024) == "expected an integer in [0, 1024], got '0x10'");
   BOOST_TEST(cli::integer_error("18446744073709551616", 0, UINT64_MAX) == "expected an integer in [0, 18446744073709551615], got '18446744073709551616'");
   BOOST_TEST(cli::integer_error("18446744073709551615", 0, UINT64_MAX).empty());
+}
+
+// An integer --size N is N instances per family and query (README, experiments/STUDY.md), with
+// the failure maps and the hunt of the smallest preset holding at least N per family (tiny 3,
+// small 12, default 96, large 400; large's beyond) and 1000 N uniform instances per query; the
+// preset values are those the README and STUDY.md give.
+BOOST_AUTO_TEST_CASE(an_integer_size_takes_the_maps_of_the_preset_it_lies_under) {
+  struct Expected {
+    const char* size;
+    long per_family;
+    int map_cells;
+    long hunt, uniform;
+  };
+  for (const Expected& e : {Expected{"tiny", 3, 16, 20, 200}, Expected{"1", 1, 16, 20, 1000}, Expected{"3", 3, 16, 20, 3000},
+                            Expected{"4", 4, 64, 150, 4000}, Expected{"12", 12, 64, 150, 12000}, Expected{"small", 12, 64, 150, 5000},
+                            Expected{"13", 13, 128, 250, 13000}, Expected{"96", 96, 128, 250, 96000},
+                            Expected{"default", 96, 128, 250, 100000}, Expected{"97", 97, 256, 5000, 97000},
+                            Expected{"large", 400, 256, 5000, 1000000}, Expected{"10000000", 10000000, 256, 5000, 100000000}}) {
+    cli::StudyOptions o;
+    o.size = e.size;
+    cli::detail::apply_size(o);
+    BOOST_TEST(o.per_family == e.per_family, e.size);
+    BOOST_TEST(o.map_cells == e.map_cells, e.size);
+    BOOST_TEST(o.hunt_evaluations == e.hunt, e.size);
+    BOOST_TEST(o.uniform_per_query == e.uniform, e.size);
+  }
+  // What the file or the command line sets is kept.
+  cli::StudyOptions o;
+  o.size = "5";
+  o.map_cells = 8;
+  cli::detail::apply_size(o);
+  BOOST_TEST(o.map_cells == 8);
+  BOOST_TEST(o.per_family == 5);
 }
 
 BOOST_AUTO_TEST_CASE(missing_or_malformed_file) {
