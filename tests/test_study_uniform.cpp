@@ -90,6 +90,20 @@ fs::path fresh(const std::string& name) {
   return p;
 }
 
+// Shard K of n of the uniform sample of `per_query` instances per query, for K = 0 .. n-1, each
+// written into folder/shard-K-of-n (created); returns the shards' folders in order.
+std::vector<fs::path> write_uniform_shards(long per_query, int n, const Registry& registry, const fs::path& folder) {
+  std::vector<fs::path> shards;
+  for (int k = 0; k < n; ++k) {
+    cli::StudyOptions o = sample_options(per_query);
+    o.shard_index = k, o.shard_count = n;
+    shards.push_back(folder / ("shard-" + std::to_string(k) + "-of-" + std::to_string(n)));
+    fs::create_directories(shards.back());
+    cli::detail::run_uniform_sample(o, registry, shards.back());
+  }
+  return shards;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(counts_of_methods_with_known_answers) {
@@ -240,29 +254,16 @@ BOOST_AUTO_TEST_CASE(shards_merge_into_the_unsharded_sample) {
   const Registry registry = fake_registry();
   const fs::path whole = fresh("whole"), merged = fresh("merged");
   cli::detail::run_uniform_sample(sample_options(101), registry, whole);
-  std::vector<fs::path> shards;
-  for (int s = 0; s < 3; ++s) {
-    cli::StudyOptions o = sample_options(101);
-    o.shard_index = s, o.shard_count = 3;
-    shards.push_back(merged / ("shard-" + std::to_string(s) + "-of-3"));
-    fs::create_directories(shards.back());
-    cli::detail::run_uniform_sample(o, registry, shards.back());
-    // 101 = 34 + 34 + 33 instances per query.
-    for (const CsvRow& r : read_csv(shards.back() / "uniform.csv")) BOOST_TEST(n(r, "instances") == (s < 2 ? 34 : 33));
-  }
+  const std::vector<fs::path> shards = write_uniform_shards(101, 3, registry, merged);
+  // 101 = 34 + 34 + 33 instances per query.
+  for (std::size_t s = 0; s < shards.size(); ++s)
+    for (const CsvRow& r : read_csv(shards[s] / "uniform.csv")) BOOST_TEST(n(r, "instances") == (s < 2 ? 34 : 33));
   cli::detail::merge_uniform(shards, merged);
   BOOST_TEST(slurp(merged / "uniform.csv") == slurp(whole / "uniform.csv"));
 
   // A shard of more shards than instances has rows of zeros and still merges.
   const fs::path sparse = fresh("sparse");
-  std::vector<fs::path> many;
-  for (int s = 0; s < 4; ++s) {
-    cli::StudyOptions o = sample_options(2);
-    o.shard_index = s, o.shard_count = 4;
-    many.push_back(sparse / ("shard-" + std::to_string(s) + "-of-4"));
-    fs::create_directories(many.back());
-    cli::detail::run_uniform_sample(o, registry, many.back());
-  }
+  const std::vector<fs::path> many = write_uniform_shards(2, 4, registry, sparse);
   BOOST_TEST(n(read_csv(many[3] / "uniform.csv").at(0), "instances") == 0);
   cli::detail::merge_uniform(many, sparse);
   for (const CsvRow& r : read_csv(sparse / "uniform.csv")) BOOST_TEST(n(r, "instances") == 2);
