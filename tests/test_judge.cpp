@@ -745,5 +745,5 @@ BOOST_AUTO_TEST_CASE(query_answers_a_coprocess_line_by_line) {
   const Run r = s.run("{ echo '" + line + "'; sleep 6; } | timeout 2 " + kCertcyl + " query --line-buffered --brief");
   BOOST_TEST(r.status == 124);  // ended by timeout, the input still open
   // The gap, the point's depth min(1 - q, s, 1 - s): q = 0 on the axis, s = 1/2 at half height.
-  BOOST_TEST(r.out == "{\"id\":1,\"answer\":\"overlapping\",\"gap\":[0.5,0.5]}\n");
+  BOOST_TEST(r.out == "{\"id\":1,\"answer\":\"overlapping\",\"gap\":[0.5,0.5],\"gap_quantity\":\"depth_margin\"}\n");
 }

@@ -74,7 +74,10 @@ std::map<std::string, std::pair<long, long>> hand_failures(const fs::path& file)
   std::map<std::string, std::size_t> at;
   auto split = [](const std::string& l) {
     std::vector<std::string> f(1);
-    for (char ch : l) ch == ',' ? f.emplace_back() : f.back().push_back(ch);
+    for (char ch : l) {
+      if (ch == ',') f.emplace_back();
+      else f.back().push_back(ch);
+    }
     return f;
   };
   header = split(lines[0]);
