@@ -790,3 +790,42 @@ BOOST_AUTO_TEST_CASE(a_time_limit_that_runs_out_answers_undecided_and_says_so) {
   BOOST_TEST(quick.answer == Answer::separated);
   BOOST_TEST(!quick.time_limit_reached);
 }
+
+// The caller's stop predicate (CylinderCylinderOptions::stop), asked at the time limit's checks
+// with stop_context: on the needles above, one that says stop at once leaves them undecided with
+// stopped set (and not time_limit_reached); one that never does is asked and leaves them
+// overlapping; the unit cylinders are decided before any check, so it is never asked.
+BOOST_AUTO_TEST_CASE(a_stop_predicate_that_says_stop_answers_undecided_and_says_so) {
+  const certcyl::Cylinder<double> needle_a{{0, 0, 0}, {0, 0x1p+422, 0}, 22.5};
+  const certcyl::Cylinder<double> needle_b{{0x1p+422, 8.75, 22.5}, {22.5, 22.5, 22.5}, 22.5};
+  struct Asked {
+    bool answer;
+    int calls = 0;
+  };
+  const auto ask = [](void* context) {
+    auto* a = static_cast<Asked*>(context);
+    ++a->calls;
+    return a->answer;
+  };
+  Asked stop{true}, go_on{false};
+  certcyl::CylinderCylinderOptions o;
+  o.stop = ask;
+  o.stop_context = &stop;
+  const auto stopped = certcyl::certified_cylinder_cylinder(needle_a, needle_b, o);
+  BOOST_TEST(stopped.answer == Answer::undecided);
+  BOOST_TEST(stopped.stopped);
+  BOOST_TEST(!stopped.time_limit_reached);
+  BOOST_TEST(stop.calls == 1);  // once true, the query does not ask again
+  o.stop_context = &go_on;
+  const auto decided = certcyl::certified_cylinder_cylinder(needle_a, needle_b, o);
+  BOOST_TEST(decided.answer == Answer::overlapping);
+  BOOST_TEST(!decided.stopped);
+  BOOST_TEST(go_on.calls > 0);
+  const certcyl::Cylinder<double> unit_a{{0, 0, 0}, {0, 0, 1}, 1}, unit_b{{10, 0, 0}, {10, 0, 1}, 1};
+  Asked quick_stop{true};
+  o.stop_context = &quick_stop;
+  const auto quick = certcyl::certified_cylinder_cylinder(unit_a, unit_b, o);
+  BOOST_TEST(quick.answer == Answer::separated);
+  BOOST_TEST(!quick.stopped);
+  BOOST_TEST(quick_stop.calls == 0);
+}

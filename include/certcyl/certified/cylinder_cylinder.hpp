@@ -101,7 +101,7 @@
 //                    (Theorem "precision"): linear in the input's bit size, and astronomically
 //                    pessimistic (about 4.4e9 bits for binary64 input of full range; the precisions
 //                    the stage reaches are reported per answer in ellipsoid_precision). Only a
-//                    caller's max_precision, time_limit_seconds or prove_touching = false leaves
+//                    caller's max_precision, time_limit_seconds, stop or prove_touching = false leaves
 //                    it bounded, and the answer undecided when no proof was found within it.
 // Undecided results carry the certified bounds gap().phi_lower <= phi* <= gap().phi_upper, so
 // |phi* - 1| <= gap().distance_bound().
@@ -209,6 +209,12 @@ struct CylinderCylinderOptions {
   // these (on input of thousands of digits, a second or more). A limit above 10^9 s is taken as
   // 10^9 s, and NaN as none. The study and the command's default never set it.
   double time_limit_seconds = 0;
+  // A caller's request to stop (a resource the caller tracks, such as memory): null (the default)
+  // or a function the query calls with stop_context at each check of the time limit; once it
+  // returns true, the query stops there as when the time limit runs out and answers undecided,
+  // with stopped set. The same checks, so the same overrun.
+  bool (*stop)(void* context) = nullptr;
+  void* stop_context = nullptr;
   // Try the exact touching proofs (stages touching_exact and the reconstruction in gmpfr).
   bool prove_touching = true;
   // Run the refine stage (Newton's method in double-double on the optimality conditions). Off,
@@ -301,6 +307,7 @@ struct CylinderCylinderResult {
   long gmpfr_precision = 0;
   long ellipsoid_precision = 0;  // highest precision of the ellipsoid stage, 0 if it did not run
   bool time_limit_reached = false;  // undecided because options.time_limit_seconds ran out (false when decided)
+  bool stopped = false;             // undecided because options.stop asked to stop (false when decided)
   CylinderCylinderCounters counters;
   std::array<double, kCylinderStages> stage_seconds{};  // indexed by CylinderStage; zero unless time_stages
 
@@ -446,9 +453,12 @@ class CylinderCylinderSolver {
  private:
   using Clock = std::chrono::steady_clock;
 
-  // The caller's time limit (options.time_limit_seconds) has run out; once true, always true.
+  // The caller's time limit (options.time_limit_seconds) has run out, or its stop predicate
+  // (options.stop) asked to stop; once true, always true.
   bool out_of_time() {
-    if (!deadline_ || result_.time_limit_reached) return result_.time_limit_reached;
+    if (result_.time_limit_reached || result_.stopped) return true;
+    if (options_.stop && options_.stop(options_.stop_context)) return result_.stopped = true;
+    if (!deadline_) return false;
     return result_.time_limit_reached = Clock::now() >= *deadline_;
   }
 
@@ -547,7 +557,7 @@ class CylinderCylinderSolver {
   }
 
   CylinderCylinderResult finish() {
-    if (result_.answer != Answer::undecided) result_.time_limit_reached = false;  // a candidate past a check decided
+    if (result_.answer != Answer::undecided) result_.time_limit_reached = result_.stopped = false;  // a candidate past a check decided
     if (result_.answer == Answer::touching) {
       result_.gap_ = {true, 1, 1};
     } else if (gap_on() && !coincident_ && phi_upper_ && phi_lower_ > 0) {
