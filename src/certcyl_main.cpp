@@ -6,13 +6,16 @@
 #include <csignal>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <thread>
+#include <utility>
 
 #include <unistd.h>
 
 #include "cases.hpp"
 #include "demo.hpp"
+#include "gmp_memory.hpp"
 #include "interrupt.hpp"
 #include "judge.hpp"
 #include "query.hpp"
@@ -32,7 +35,8 @@ std::string query_help() {
   std::string s =
       "Reads one JSON object per line on standard input and writes one JSON line per input line,\n"
       "in the same order, echoing \"id\". Exit status: 0 all lines answered, 2 some line had an\n"
-      "error (that line is {\"id\":..., \"error\": \"<field>: <what>\"}), 1 fatal (I/O, usage).\n\n"
+      "error (that line is {\"id\":..., \"error\": \"<field>: <what>\"}), 1 fatal (I/O, usage), 3 memory\n"
+      "exhausted in GMP even after its reserve (every line written is complete).\n\n"
       "Queries and their methods:\n";
   for (const auto& [name, kind] : certcyl::cli::query_kinds()) s += "  " + name + ": " + join(kind.methods) + "\n";
   s += "\nNumbers: a JSON number is its binary64 value; a string is an exact rational\n"
@@ -54,6 +58,29 @@ CLI::Validator finite_in(double lo, double hi) {
         return {};
       },
       "FLOAT in " + range.str());
+}
+
+// A number of bytes, optionally with a binary suffix K, M, G or T (or KiB, MiB, GiB, TiB): "64M"
+// is 64 * 2^20; rewritten as the plain number.
+CLI::Validator byte_size() {
+  return CLI::Validator(
+      [](std::string& s) -> std::string {
+        const std::string error = "expected a number of bytes, optionally with K, M, G or T (KiB, MiB, GiB, TiB), got '" + s + "'";
+        std::size_t digits = 0;
+        while (digits < s.size() && s[digits] >= '0' && s[digits] <= '9') ++digits;
+        if (digits == 0 || digits > 19) return error;
+        static const std::pair<const char*, int> units[] = {{"", 0},   {"K", 10}, {"KiB", 10}, {"M", 20}, {"MiB", 20},
+                                                            {"G", 30}, {"GiB", 30}, {"T", 40},  {"TiB", 40}};
+        int shift = -1;
+        for (const auto& [unit, bits] : units)
+          if (s.compare(digits, std::string::npos, unit) == 0) shift = bits;
+        if (shift < 0) return error;
+        const unsigned long long value = std::stoull(s.substr(0, digits));
+        if (value > (std::numeric_limits<std::size_t>::max() >> shift)) return "more bytes than a size can hold: '" + s + "'";
+        s = std::to_string(value << shift);
+        return {};
+      },
+      "BYTES");
 }
 
 // An integer in [0, 2^64 - 1]: a negative value is an error, never wrapped.
@@ -102,6 +129,11 @@ int main(int argc, char** argv) {
           return "expected a number of seconds in [0, 1e9] (0: no limit), got '" + text + "'";
         return std::string();
       });
+  query->add_option("--memory-limit", options.memory_limit_bytes,
+                    "Bytes of GMP memory a line may hold (K, M, G suffixes: 1024-based) before it is answered\n"
+                    "with an error line (a certified cylinder pair stops at its next check, so it can run over;\n"
+                    "default 0: no limit)")
+      ->transform(byte_size());
   query->add_flag("--line-buffered", options.line_buffered,
                   "Answer every line and flush its answer as soon as it is read (for a co-process; without it\n"
                   "lines are answered in batches, cut short whenever no more input is at hand)");
@@ -117,7 +149,8 @@ int main(int argc, char** argv) {
       "overlaps or is undecided: {\"a\": name, \"b\": name, \"answer\": ..., \"certificate\": ...}.\n"
       "Broad phase: CGAL::box_intersection_d on closed boxes rounded outward; narrow phase: the certified\n"
       "queries. A one-line summary (counts, seconds per phase) goes to standard error; --stats adds the\n"
-      "same as JSON. Exit status: 0 done, 2 invalid scene, 1 I/O error.\n"
+      "same as JSON. Exit status: 0 done, 2 invalid scene, 1 I/O error or memory exhausted, 3 memory\n"
+      "exhausted in GMP even after its reserve.\n"
       "A random scene to try it on: certcyl make-scene --cylinders 100000 --seed 1 > scene.json");
   scene->add_option("FILE", scene_file, "Scene JSON file")->required();
   scene->add_option("--threads", scene_threads, "Worker threads for the narrow phase (default 1; 0 = all cores)")
@@ -281,6 +314,7 @@ int main(int argc, char** argv) {
     return status;
   }
   if (query->parsed()) {
+    certcyl::cli::install_gmp_memory("certcyl query", "every answer line written is complete; the line in progress and the lines after it are not answered");
     certcyl::cli::install_interrupt_handlers();
     options.nt = certcyl::parse_number_type(nt_name);
     options.nt_given = query->count("--nt") > 0;
@@ -351,6 +385,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (scene->parsed()) {
+    certcyl::cli::install_gmp_memory("certcyl scene", "every line written is complete; the pairs of the chunk in progress and after it are not examined");
     certcyl::cli::install_interrupt_handlers();
     if (scene_threads == 0) scene_threads = std::max(1u, std::thread::hardware_concurrency());
     return certcyl::cli::run_scene(scene_file, std::cout, scene_threads, scene_progress || isatty(2), scene_stats, std::cerr);

@@ -19,6 +19,7 @@
 
 #include "certcyl/errors.hpp"
 #include "fd_io.hpp"
+#include "gmp_memory.hpp"
 #include "interrupt.hpp"
 
 namespace certcyl::cli {
@@ -152,7 +153,24 @@ ojson brief_answer(const ojson& full) {
 json parse_strict_json(const std::string& text) { return json::parse(text, strict_callback()); }
 json parse_strict_json(std::istream& in) { return json::parse(in, strict_callback()); }
 
+namespace {
+
+// The error of a line whose GMP memory scope had an event, or "".
+std::string memory_error(const GmpMemoryScope& memory) {
+  switch (memory.event()) {
+    case GmpMemoryEvent::none: return {};
+    case GmpMemoryEvent::over_limit:
+      return "out of memory answering this line: its GMP memory went over the limit of " + std::to_string(memory.limit()) +
+             " bytes (--memory-limit)";
+    case GmpMemoryEvent::allocation_failed: return "out of memory answering this line: an allocation of GMP failed";
+  }
+  return {};
+}
+
+}  // namespace
+
 ojson answer_line(const std::string& line, const QueryOptions& options, std::size_t line_number) {
+  const GmpMemoryScope memory(options.memory_limit_bytes);
   if (line.size() > kMaxLineBytes)
     return error_line(nullptr, line_number, "line longer than the limit of " + std::to_string(kMaxLineBytes) + " bytes");
   json input;
@@ -200,6 +218,8 @@ ojson answer_line(const std::string& line, const QueryOptions& options, std::siz
     ojson result{{"id", ojson(id)}};
     if (auto meta = input.find("meta"); meta != input.end()) result["meta"] = ojson(*meta);
     const ojson answer = kind->second.answer(input, options);
+    // Over --memory-limit, or an allocation failed (the answer, if any, may come from a stop).
+    if (const std::string error = memory_error(memory); !error.empty()) return error_line(id, line_number, error);
     for (auto it = answer.begin(); it != answer.end(); ++it) result[it.key()] = it.value();
     // A floating-point method whose computation left the finite doubles (an overflow, a 0/0)
     // answers "invalid", naming the value: a failure the judgement counts, never a crash and
@@ -287,6 +307,8 @@ std::string ended_reason(int status, const std::filesystem::path& diagnostics) {
     if (auto colon = last.find("): "); colon != std::string::npos) last.erase(0, colon + 3);
     return "CORE::Expr ended the computation: " + last;
   }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == kGmpOutOfMemoryStatus)
+    return "the computation ran out of memory: GMP could not allocate (exit status " + std::to_string(kGmpOutOfMemoryStatus) + ")";
   if (WIFSIGNALED(status))
     return "the computation ended by signal " + std::to_string(WTERMSIG(status)) + " (" + strsignal(WTERMSIG(status)) + ")";
   return "the computation ended the process with exit status " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1);

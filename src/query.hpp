@@ -44,6 +44,12 @@ struct QueryOptions {
   // (CylinderCylinderOptions::time_limit_seconds); 0, the default, is none. A line that runs out
   // is answered undecided with a reason.
   double time_limit_seconds = 0;
+  // --memory-limit: the most bytes of GMP (and MPFR) memory a line may hold (GmpMemoryScope,
+  // counted once the command has installed GMP's memory functions); 0, the default, is none. A
+  // line over it is an error line; the certified cylinder-pair query stops at its next check
+  // (CylinderCylinderOptions::stop), the other queries when they end, so a line can hold more
+  // than the limit before it stops.
+  std::size_t memory_limit_bytes = 0;
 };
 
 // Limits on one input line.

@@ -6,16 +6,19 @@
 
 #include "certcyl/io/json_input.hpp"
 #include "certcyl/seeds/eberly_cylinders.hpp"
+#include "gmp_memory.hpp"
 #include "query_support.hpp"
 
 namespace certcyl::cli {
 
-// The command reports the tighter gap enclosure of the ranked fast path, and passes on the time
-// limit of --time-limit.
+// The command reports the tighter gap enclosure of the ranked fast path, passes on the time
+// limit of --time-limit, and stops when the line's GMP memory has an event (--memory-limit, a
+// failed allocation; answer_line turns the line into an error).
 CylinderCylinderOptions command_options(const QueryOptions& q) {
   CylinderCylinderOptions o;
   o.refine_gap = true;
   o.time_limit_seconds = q.time_limit_seconds;
+  o.stop = gmp_memory_stop;
   return o;
 }
 

@@ -350,5 +350,32 @@ if [[ $status == 0 && -f $work/ri/int/manifest.json && ! -e $work/ri/.int.partia
   pass "a study re-run after the interruption starts clean"
 else fail "study re-run after the interruption: status $status, $(ls -A "$work/ri" "$work/ri/int" 2> /dev/null | tr '\n' ' ') $(head -c 300 "$work/ri.err")"; fi
 
+# 18. GMP memory per line (--memory-limit): the middle line's numbers of 15,000 digits make its
+# GMP memory go over 64 KiB, so it is an error line saying so; the lines around it (doubles) are
+# answered exactly as without the limit, with 1 and 2 threads, and the run goes on to the end
+# (exit 2). A limit that is not a size is a usage error.
+"$py" - > "$work/memory.jsonl" <<'EOF'
+import json
+def pair(i, top0, top1):
+    return json.dumps({"id": i, "query": "cylinder_cylinder", "a": {"p0": [0, 0, 0], "p1": [0, 0, top0], "radius": 1},
+                       "b": {"p0": [3, 0, 0], "p1": [3, 0, top1], "radius": 1}})
+print(pair(1, 2, 2))
+print(pair(2, "7" * 14999 + "1", "3" * 14999 + "9"))
+print(pair(3, 2, 0.5))
+EOF
+"$certcyl" query < "$work/memory.jsonl" > "$work/memory_plain.out"
+for threads in 1 2; do
+  "$certcyl" query --memory-limit 64K --threads $threads < "$work/memory.jsonl" > "$work/memory.out"
+  status=$?
+  want_error='{"id":2,"line":2,"error":"out of memory answering this line: its GMP memory went over the limit of 65536 bytes (--memory-limit)"}'
+  if [[ $status == 2 && $(sed -n 1p "$work/memory.out") == "$(sed -n 1p "$work/memory_plain.out")" &&
+        $(sed -n 3p "$work/memory.out") == "$(sed -n 3p "$work/memory_plain.out")" && $(sed -n 2p "$work/memory.out") == "$want_error" &&
+        $(wc -l < "$work/memory.out") == 3 && $(sed -n 2p "$work/memory_plain.out") == *'"answer":"separated"'* ]]; then
+    pass "--memory-limit 64K --threads $threads: the line over it is an error line, the others answered as without it"
+  else fail "--memory-limit --threads $threads: status $status, $(cut -c1-200 "$work/memory.out")"; fi
+done
+check_message 1 "--memory-limit: expected a number of bytes, optionally with K, M, G or T (KiB, MiB, GiB, TiB), got '12X'" \
+  "$certcyl" query --memory-limit 12X
+
 echo "$failures failure(s)"
 [[ $failures == 0 ]]
