@@ -18,6 +18,7 @@
 #include "certcyl/certified/cylinder_cylinder.hpp"
 #include "certcyl/certified/triangle_cylinder.hpp"
 #include "certcyl/io/json_input.hpp"
+#include "gmp_memory.hpp"
 #include "interrupt.hpp"
 #include "query_cylinder.hpp"
 #include "query_support.hpp"
@@ -129,7 +130,9 @@ struct ChunkLines {
 
 // The narrow phase on one chunk of candidate pairs: the certified query on each, on `threads`
 // threads. A worker catches what its pair throws (an exception must not leave a thread: that
-// ends the process) and the others then take no new pair.
+// ends the process) and the others then take no new pair. A pair during which an allocation of
+// GMP failed (GmpMemoryScope: it went on from the emergency reserve, and a cylinder pair stopped
+// at its next check) fails as std::bad_alloc.
 ChunkLines narrow_phase(const std::vector<SceneSolid>& solids, const std::vector<std::pair<std::size_t, std::size_t>>& pairs,
                         unsigned threads, std::atomic<std::size_t>& done, SceneStats& stats) {
   using clock = std::chrono::steady_clock;
@@ -151,14 +154,20 @@ ChunkLines narrow_phase(const std::vector<SceneSolid>& solids, const std::vector
         Answer verdict;
         std::optional<CylinderCylinderResult> cc;
         std::optional<TriangleCylinderResult> tc;
-        if (a.is_cylinder && b.is_cylinder) {
-          cc = certified_cylinder_cylinder(a.cylinder, b.cylinder, {});
-          verdict = cc->answer;
-        } else {
-          const SceneSolid& tri = a.is_cylinder ? b : a;
-          const SceneSolid& cyl = a.is_cylinder ? a : b;
-          tc = certified_triangle_cylinder(tri.triangle, cyl.cylinder);
-          verdict = tc->answer;
+        {
+          const GmpMemoryScope memory;
+          if (a.is_cylinder && b.is_cylinder) {
+            CylinderCylinderOptions options;
+            options.stop = gmp_memory_stop;
+            cc = certified_cylinder_cylinder(a.cylinder, b.cylinder, options);
+            verdict = cc->answer;
+          } else {
+            const SceneSolid& tri = a.is_cylinder ? b : a;
+            const SceneSolid& cyl = a.is_cylinder ? a : b;
+            tc = certified_triangle_cylinder(tri.triangle, cyl.cylinder);
+            verdict = tc->answer;
+          }
+          if (memory.event() != GmpMemoryEvent::none) throw std::bad_alloc();
         }
         const auto q1 = clock::now();
         if (verdict != Answer::separated) {
@@ -201,7 +210,8 @@ ChunkLines narrow_phase(const std::vector<SceneSolid>& solids, const std::vector
 }  // namespace
 
 int stream_meeting_pairs(const std::vector<SceneSolid>& solids, unsigned threads, bool progress, SceneStats& stats,
-                         const std::function<bool(const std::string&)>& write, std::size_t chunk_size) {
+                         const std::function<bool(const std::string&)>& write, std::size_t chunk_size,
+                         const std::function<bool()>& chunk_written) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   threads = std::max(1u, threads);
@@ -238,6 +248,7 @@ int stream_meeting_pairs(const std::vector<SceneSolid>& solids, unsigned threads
     // The lines before a failed pair are written, in order, before its exception goes on.
     for (std::size_t k = 0; k < result.complete; ++k)
       if (!result.lines[k].empty() && !write(result.lines[k])) throw ScanStopped{1};
+    if (chunk_written && !chunk_written()) throw ScanStopped{1};
     write_s += seconds_since(w0);
     if (result.failure) std::rethrow_exception(result.failure);
     chunk.clear();
@@ -322,10 +333,15 @@ int run_scene(const std::string& path, std::ostream& out, unsigned threads, bool
 
   int status = 0;
   try {
-    status = stream_meeting_pairs(solids, threads, progress, stats, [&](const std::string& l) {
-      out << l << '\n';
-      return static_cast<bool>(out);
-    });
+    // Each chunk's lines are flushed before the next chunk's queries: whenever GMP may end the
+    // process (gmp_memory.hpp), what was written is complete lines.
+    status = stream_meeting_pairs(
+        solids, threads, progress, stats,
+        [&](const std::string& l) {
+          out << l << '\n';
+          return static_cast<bool>(out);
+        },
+        kSceneChunk, [&] { return static_cast<bool>(out.flush()); });
   } catch (const std::bad_alloc&) {
     out.flush();
     err << "certcyl scene: out of memory in the scan; the lines of the pairs examined before are written\n";

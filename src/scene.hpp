@@ -67,11 +67,13 @@ struct SceneStats {
 inline constexpr std::size_t kSceneChunk = 16384;
 
 // Streams the JSON line of every candidate pair that touches, overlaps or is undecided to
-// `write`, chunk by chunk (header comment); fills every field of `stats` except read_s. Returns
-// 0, 1 when `write` returned false (the scan stops), or 128 + the signal's number when SIGINT or
-// SIGTERM stopped it between chunks.
+// `write`, chunk by chunk (header comment), and calls `chunk_written` (when given) after each
+// chunk's lines, before the next chunk's queries; fills every field of `stats` except read_s.
+// Returns 0, 1 when `write` or `chunk_written` returned false (the scan stops), or 128 + the
+// signal's number when SIGINT or SIGTERM stopped it between chunks.
 int stream_meeting_pairs(const std::vector<SceneSolid>& solids, unsigned threads, bool progress, SceneStats& stats,
-                         const std::function<bool(const std::string&)>& write, std::size_t chunk_size = kSceneChunk);
+                         const std::function<bool(const std::string&)>& write, std::size_t chunk_size = kSceneChunk,
+                         const std::function<bool()>& chunk_written = {});
 
 // All of them at once (for tests and small scenes).
 std::vector<std::string> meeting_pairs(const std::vector<SceneSolid>& solids, unsigned threads, bool progress, SceneStats& stats);
