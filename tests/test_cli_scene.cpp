@@ -224,6 +224,24 @@ BOOST_AUTO_TEST_CASE(a_failed_write_stops_the_scan) {
   BOOST_TEST(stats.candidate_pairs < 780u);
 }
 
+// chunk_written is called after each chunk's lines, before the next chunk's queries (run_scene
+// flushes there, so that an end of the process in GMP leaves no cut line); false stops the scan
+// with status 1.
+BOOST_AUTO_TEST_CASE(chunk_written_follows_each_chunk_and_can_stop_the_scan) {
+  const std::vector<SceneSolid> solids = identical_cylinders(40);  // 780 pairs, all overlapping
+  SceneStats stats;
+  std::size_t written = 0;
+  std::vector<std::size_t> at;  // the lines written at each call
+  const auto write = [&](const std::string&) { return ++written, true; };
+  BOOST_TEST(stream_meeting_pairs(solids, 2, false, stats, write, 100, [&] { return at.push_back(written), true; }) == 0);
+  BOOST_TEST(written == 780u);
+  BOOST_TEST((at == std::vector<std::size_t>{100, 200, 300, 400, 500, 600, 700, 780}));
+  written = 0;
+  at.clear();
+  BOOST_TEST(stream_meeting_pairs(solids, 2, false, stats, write, 100, [&] { return at.push_back(written), at.size() < 3; }) == 1);
+  BOOST_TEST(written == 300u);
+}
+
 // A worker thread that runs out of memory does not end the process: the scan throws
 // std::bad_alloc after writing, in order, the lines of the pairs before the failed one.
 BOOST_AUTO_TEST_CASE(out_of_memory_in_a_worker_keeps_the_lines_written) {
