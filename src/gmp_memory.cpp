@@ -60,7 +60,7 @@ void append(char* buf, std::size_t cap, std::size_t& used, const char* text) {
   for (; *text && used < cap; ++text) buf[used++] = *text;
 }
 
-[[noreturn]] void out_of_memory(std::size_t size) {
+[[noreturn]] void out_of_memory(std::size_t size, bool released) {
   char digits[24];
   int n = 0;
   do {
@@ -75,7 +75,7 @@ void append(char* buf, std::size_t cap, std::size_t& used, const char* text) {
   append(message, sizeof message - 1, used, g_command);
   append(message, sizeof message - 1, used, ": out of memory: GMP could not allocate ");
   append(message, sizeof message - 1, used, number);
-  append(message, sizeof message - 1, used, " bytes, even after releasing its reserve; ");
+  append(message, sizeof message - 1, used, released ? " bytes, even after releasing its reserve; " : " bytes, and had no reserve left to release; ");
   append(message, sizeof message - 1, used, g_consequence);
   message[used++] = '\n';
   for (std::size_t done = 0; done < used;) {
@@ -90,10 +90,11 @@ void append(char* buf, std::size_t cap, std::size_t& used, const char* text) {
 // retry fails too.
 template <class Retry>
 void* after_failure(std::size_t size, Retry retry) {
-  if (void* r = g_reserve.exchange(nullptr)) munmap(r, kGmpReserveBytes);
+  void* reserve = g_reserve.exchange(nullptr);
+  if (reserve) munmap(reserve, kGmpReserveBytes);
   if (t_memory.in_scope) t_memory.event = GmpMemoryEvent::allocation_failed;
   if (void* p = retry()) return p;
-  out_of_memory(size);
+  out_of_memory(size, reserve != nullptr);
 }
 
 void* gmp_allocate(std::size_t size) {

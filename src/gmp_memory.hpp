@@ -9,12 +9,14 @@
 //     scope began, and raises GmpMemoryEvent::over_limit when that exceeds the scope's limit (a
 //     soft limit: the allocation still succeeds);
 //   - on a failed allocation, release an emergency reserve (kGmpReserveBytes of address space,
-//     mapped at installation and never touched, so it holds no resident memory) and retry,
+//     mapped at installation when it can be and never touched, so it holds no resident memory;
+//     under an address-space limit near the process's own size it may not be) and retry,
 //     raising GmpMemoryEvent::allocation_failed in the thread's scope: the evaluation in progress
 //     finishes, and the command ends the unit of work as out of memory. The next scope maps the
 //     reserve again (when it can);
 //   - when the retry fails too, write one line to standard error with write(2) (the command's
-//     name, the size, and `consequence`) and end the process with _exit(kGmpOutOfMemoryStatus).
+//     name, the size, whether a reserve was released, and `consequence`) and end the process
+//     with _exit(kGmpOutOfMemoryStatus).
 // Nothing is flushed at that end: the command must keep its output so that, whenever GMP may
 // allocate, every byte it gave its output stream has reached the operating system and forms
 // complete lines (query and scene flush after each batch or chunk of lines and compute nothing
