@@ -314,7 +314,7 @@ int main(int argc, char** argv) {
     return status;
   }
   if (query->parsed()) {
-    certcyl::cli::install_gmp_memory("certcyl query", "every answer line written is complete; the line in progress and the lines after it are not answered");
+    certcyl::cli::install_gmp_memory("certcyl query", "every answer line written is complete; the answers of the batch in progress (with --line-buffered, the line in progress) and the lines after it are not written");
     certcyl::cli::install_interrupt_handlers();
     options.nt = certcyl::parse_number_type(nt_name);
     options.nt_given = query->count("--nt") > 0;
@@ -385,7 +385,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (scene->parsed()) {
-    certcyl::cli::install_gmp_memory("certcyl scene", "every line written is complete; the pairs of the chunk in progress and after it are not examined");
+    certcyl::cli::install_gmp_memory("certcyl scene", "every line written is complete; the lines of the chunk in progress and after it are not written");
     certcyl::cli::install_interrupt_handlers();
     if (scene_threads == 0) scene_threads = std::max(1u, std::thread::hardware_concurrency());
     return certcyl::cli::run_scene(scene_file, std::cout, scene_threads, scene_progress || isatty(2), scene_stats, std::cerr);
