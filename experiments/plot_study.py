@@ -48,6 +48,7 @@ Needs matplotlib and numpy (Debian python3-matplotlib, python3-numpy).
 import json
 import math
 import os
+import re
 import sys
 import time
 from collections import defaultdict
@@ -58,7 +59,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from matplotlib.colors import ListedColormap  # noqa: E402
+from matplotlib.colors import to_rgba, to_rgba_array  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import certcyl_results as cr  # noqa: E402
@@ -113,13 +114,13 @@ def pareto_axes(ax, query, ylabel):
     ax.grid(alpha=0.3)
 
 
-def pareto_legend(fig, axes, used, title, lift=0):
-    """Blanks the unused panels, and adds the legend of method kinds and the front (`lift`, a
-    fraction of the figure's height, above the bottom: the judged methods' legend below it), and
-    the title."""
+def pareto_legend(fig, axes, used, title, kinds, lift=0):
+    """Blanks the unused panels, and adds the legend of the method kinds drawn (`kinds`) and the
+    front (`lift`, a fraction of the figure's height, above the bottom: the judged methods'
+    legend below it), and the title."""
     for ax in list(axes.flat)[used:]:
         ax.axis("off")
-    handles = [plt.Line2D([], [], color=c, marker="o", ls="", ms=4, label=k) for k, c in KIND_COLOURS.items()]
+    handles = [plt.Line2D([], [], color=c, marker="o", ls="", ms=4, label=k) for k, c in KIND_COLOURS.items() if k in kinds]
     handles.append(plt.Line2D([], [], color="grey", lw=0.7, label="Pareto front (its methods named)"))
     bottom_legend(fig, handles, 6, lift)
     fig.suptitle(title, fontsize=8)
@@ -156,6 +157,17 @@ def label_front(ax, pts, floor=None):
         ax.annotate(label, (x, y), xytext=(fx - 0.03 if right else fx + 0.03, ty), textcoords="axes fraction", fontsize=5,
                     ha="right" if right else "left", va="center", arrowprops={"arrowstyle": "-", "color": "grey", "lw": 0.4},
                     **style)
+
+
+def wrap_name(name, width):
+    """A method's name on lines of at most `width` characters where it can break: before a
+    parameter list "[...]" and after a "/" (a longer piece keeps its own line)."""
+    lines = [""]
+    for piece in re.split(r"(?=\[)|(?<=/)", name):
+        if lines[-1] and len(lines[-1]) + len(piece) > width:
+            lines.append("")
+        lines[-1] += piece
+    return "\n".join(lines)
 
 
 # A judged method (--judged): a star with a black edge, the first method red, the others in turn.
@@ -318,7 +330,7 @@ def gap_rate(rows, out):
                     ys.append(bad / n)
                 if xs:
                     ax.plot(xs, ys, marker=marker, ms=2.5, lw=0.9, color=colour)
-            ax.set_title(m, fontsize=6)
+            ax.set_title(wrap_name(m, 36), fontsize=6, linespacing=1.05)
             ax.set_ylim(-0.05, 1.05)
             ax.set_xlim(-21, 3)
             ax.tick_params(labelsize=6)
@@ -357,12 +369,14 @@ def pareto(rows, summary, out, judged=()):
     rows_n = math.ceil(len(queries) / cols)
     fig, axes = plt.subplots(rows_n, cols, figsize=(PAGE_WIDTH, 2.7 * rows_n + 0.8), squeeze=False)
     floor = 1e-4
+    drawn = set()  # the kinds drawn
     for ax, q in zip(axes.flat, queries):
         kinds = {r["method"]: r["kind"] for r in summary if r["query"] == q}
         common, points = cr.paired_speed_error(rows, q, sorted(kinds), ran)
         pts = [(ns, rate, m, kinds[m]) for m, (ns, rate, decided) in points.items() if ns > 0 and decided]
         for ns, rate, m, kind in pts:
             ax.scatter(ns, max(rate, floor), color=KIND_COLOURS.get(kind, "grey"), s=9, linewidths=0)
+            drawn.add(kind)
         names = draw_judged(ax, judged, q, floor, 90)
         ax.set_xscale("log")
         ax.set_yscale("log")
@@ -379,7 +393,7 @@ def pareto(rows, summary, out, judged=()):
         pareto_axes(ax, q, f"disagreement rate (0 drawn at {floor:g})")
         ax.set_title(f"{ax.get_title()} ({len(common)} paired)", fontsize=ax.title.get_fontsize())
     lift = judged_legend(fig, judged, 6)
-    pareto_legend(fig, axes, len(queries), "speed against error (per query, every method)", lift)
+    pareto_legend(fig, axes, len(queries), "speed against error (per query, every method)", drawn, lift)
     save(fig, out, "pareto",
          "One panel per query, one dot per method, coloured by kind, every method on the same instances: those of the query "
          "on which every method ran (the slow number types run on a pseudo-random subset; their count in the panel's title). "
@@ -397,10 +411,33 @@ ALGO_COLOURS = {
     "certified": "black", "robust": "tab:green", "shene": "tab:blue", "gullotti": "tab:cyan",
     "gullotti_as_written": "tab:red", "eberly_triangle": "tab:purple", "eberly_cylinders": "tab:blue",
     "eberly_cylinders_as_written": "tab:red", "fcl": "tab:brown", "fcl_mesh": "tab:brown",
-    "bullet": "tab:olive", "bullet_margin0": "goldenrod", "ode": "tab:pink", "ode_mesh": "tab:pink",
+    "bullet": "tab:olive", "bullet_margin0": "tab:olive", "ode": "tab:pink", "ode_mesh": "tab:pink",
 }
+# A peer library's variant, drawn hollow in its library's colour.
+HOLLOW = ("bullet_margin0", "fcl_mesh", "ode_mesh")
 NT_MARKERS = {"exact": "X", "double": "o", "long_double": "s", "interval": "^", "gmpfr<113>": "D",
               "core_expr": "*", "float": "P"}
+
+
+def algo_nt_legends(fig, algos, nts, fontsize, lift):
+    """Two keys at the bottom of the figure, `lift` (a fraction of its height) above it: colour =
+    algorithm, one entry per colour (algorithms of one colour never share a query: named
+    together; a peer's hollow variants in parentheses), and marker = number type."""
+    by_colour = defaultdict(lambda: ([], []))
+    for a in ALGO_COLOURS:
+        if a in algos:
+            by_colour[ALGO_COLOURS[a]][a in HOLLOW].append(a)
+    algo_handles = []
+    for c, (filled, hollow) in by_colour.items():
+        label = ", ".join(filled) + (f" (hollow: {', '.join(hollow)})" if filled and hollow else ", ".join(hollow))
+        algo_handles.append(plt.Line2D([], [], color=c, marker="o", ls="", ms=5, markerfacecolor=c if filled else "none",
+                                       label=label))
+    nt_handles = [plt.Line2D([], [], color="grey", marker=m, ls="", ms=5, label=n) for n, m in NT_MARKERS.items() if n in nts]
+    keys = ((algo_handles, "colour: algorithm", "lower left", 0.01, 3), (nt_handles, "marker: number type", "lower right", 0.99, 2))
+    for handles, title, loc, x, ncol in keys:
+        if handles:
+            fig.legend(handles=handles, title=title, title_fontsize=fontsize, loc=loc, ncol=ncol, fontsize=fontsize,
+                       frameon=False, bbox_to_anchor=(x, lift), columnspacing=1.0, handletextpad=0.3)
 
 
 def pareto_compact(rows, summary, out, judged=()):
@@ -419,7 +456,7 @@ def pareto_compact(rows, summary, out, judged=()):
         common, points = cr.paired_speed_error(rows, q, shown, ran)
         pts = [(ns, rate) + tuple(m.split("/", 1)) for m, (ns, rate, decided) in points.items() if ns > 0 and decided]
         for ns, rate, base, nt in pts:
-            hollow = base in ("bullet_margin0", "fcl_mesh", "ode_mesh")
+            hollow = base in HOLLOW
             c = ALGO_COLOURS[base]
             ax.scatter(ns, max(rate, floor), marker=NT_MARKERS[nt], s=26, linewidths=0.9,
                        facecolors="none" if hollow else c, edgecolors=c)
@@ -444,12 +481,8 @@ def pareto_compact(rows, summary, out, judged=()):
         ax.set_ylabel("rate (0 at $10^{-4}$)", fontsize=7)
     for ax in list(axes.flat)[len(queries):]:
         ax.axis("off")
-    algo_handles = [plt.Line2D([], [], color=ALGO_COLOURS[a], marker="o", ls="", ms=5,
-                               markerfacecolor="none" if a in ("bullet_margin0", "fcl_mesh", "ode_mesh") else ALGO_COLOURS[a], label=a)
-                    for a in ALGO_COLOURS if a in used_algos]
-    nt_handles = [plt.Line2D([], [], color="grey", marker=m, ls="", ms=5, label=n) for n, m in NT_MARKERS.items() if n in used_nts]
     lift = judged_legend(fig, judged, 6.2)
-    bottom_legend(fig, algo_handles + nt_handles, 6.2, lift)
+    algo_nt_legends(fig, used_algos, used_nts, 6.2, lift)
     save(fig, out, "pareto_compact",
          "The same speed against error without the sweeps and the extra MPFR precisions: colour is the algorithm, marker the "
          "number type (hollow: a peer library's variant), so the cost of each number type reads along a colour; each panel on "
@@ -483,7 +516,7 @@ def gap_rate_overview(rows, out):
                 cell = data[gi][r["method"]][e]
                 cell[0] += 1
                 cell[1] += r["outcome"] in ("false_positive", "false_negative")
-    fig, axes = plt.subplots(1, 3, figsize=(7.6, 2.9), sharey=True)
+    fig, axes = plt.subplots(1, 3, figsize=(7.6, 3.9), sharey=True)
     for gi, (title, _) in enumerate(groups):
         ax = axes[gi]
         methods = data[gi]
@@ -503,7 +536,8 @@ def gap_rate_overview(rows, out):
         ax.set_xlabel(f"$\\log_{{10}}$ of $|${quantity}$|$ (bin upper edge)", fontsize=7)
         ax.tick_params(labelsize=7)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=5.2, loc="upper right", frameon=False)
+        if wrong:  # below the panel, off the data
+            ax.legend(fontsize=5.5, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=1, frameon=False, borderaxespad=0)
     axes[0].set_ylabel("disagreement rate (FP + FN)", fontsize=7)
     save(fig, out, "gap_rate_overview",
          "The methods in hardware precision (double, long double, float) with wrong answers, at most 8 per panel: the share of "
@@ -666,6 +700,7 @@ def t_error(rows, out):
     cols = 2 if len(queries) > 1 else 1
     rn = math.ceil(len(queries) / cols)
     fig, axes = plt.subplots(rn, cols, figsize=(PAGE_WIDTH, 2.9 * rn + 0.8), squeeze=False)
+    drawn = set()  # the kinds drawn
     for ax, q in zip(axes.flat, queries):
         pts = []
         for (qq, m) in keys:
@@ -675,6 +710,7 @@ def t_error(rows, out):
             y = float(np.percentile(np.array(errs[(qq, m)]) + 1, 99))
             ax.scatter(x, y, color=KIND_COLOURS.get(kinds.get(m), "grey"), s=9, linewidths=0)
             pts.append((x, y, m))
+            drawn.add(kinds.get(m))
         ax.set_xscale("log")
         ax.set_yscale("log")
         best = front(pts)
@@ -683,7 +719,7 @@ def t_error(rows, out):
             label_front(ax, best)
         pareto_axes(ax, q, "99th percentile of 1 + t error (ulps)")
         ax.set_title(f"{ax.get_title()} ({len(common[q])} paired)", fontsize=ax.title.get_fontsize())
-    pareto_legend(fig, axes, len(queries), "speed against the error of the entry parameter t (line queries)")
+    pareto_legend(fig, axes, len(queries), "speed against the error of the entry parameter t (line queries)", drawn)
     save(fig, out, "pareto_t_error",
          "One panel per line query, one dot per method, coloured by kind, every method on the instances of the query on which "
          "all of them ran (their count in the title): further left is faster, lower has a smaller 99th "
@@ -709,24 +745,81 @@ def meets(c):
     return c in "toi"
 
 
-def map_legend(fig, fontsize):
-    handles = [plt.Line2D([], [], color=c, marker="s", ls="", label=l) for c, l in zip(CODE_COLOURS, CODE_NAMES)]
+NOT_EVALUATED_LABEL = "not evaluated (a slow method's skipped rows and columns)"
+
+
+def map_legend(fig, fontsize, used, bottom=0.0):
+    """The legend of the colours `used` (indices into CODES, "wrong", "class", "unevaluated"):
+    exactly the colours the maps show, wrong cells and class mismatches always named."""
+    handles = [plt.Line2D([], [], color=c, marker="s", ls="", label=l)
+               for k, (c, l) in enumerate(zip(CODE_COLOURS, CODE_NAMES)) if k in used]
+    if "unevaluated" in used:
+        handles.append(plt.Line2D([], [], color="white", markeredgecolor="grey", marker="s", ls="", label=NOT_EVALUATED_LABEL))
     handles.append(plt.Line2D([], [], color=WRONG_COLOUR, marker="s", ls="", label=WRONG_LABEL))
     handles.append(plt.Line2D([], [], color=CLASS_COLOUR, marker="s", ls="", label=CLASS_LABEL))
-    fig.legend(handles=handles, loc="lower center", ncol=4, fontsize=fontsize, frameon=False)
+    fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=fontsize, frameon=False, bbox_to_anchor=(0.5, bottom))
+    return math.ceil(len(handles) / 3)
 
 
 def draw_map(ax, code, bad, extent=None, cls=None):
-    """An answer per cell (code: index into CODES, masked where not evaluated), wrong cells in
-    WRONG_COLOUR and class mismatches (cls) in CLASS_COLOUR on top."""
-    ax.imshow(code, cmap=ListedColormap(CODE_COLOURS), vmin=-0.5, vmax=len(CODES) - 0.5, origin="lower",
-              interpolation="nearest", extent=extent)
-    for mask, colour in ((bad, WRONG_COLOUR), (cls, CLASS_COLOUR)):
-        if mask is not None and mask.any():
-            ax.imshow(np.ma.masked_where(~mask, np.ones(mask.shape)), cmap=ListedColormap([colour]), origin="lower",
-                      interpolation="nearest", extent=extent)
+    """An answer per cell (code: index into CODES, negative or masked where not evaluated) as one
+    RGBA image: wrong cells opaque in WRONG_COLOUR, class mismatches (cls) in CLASS_COLOUR, cells
+    not evaluated transparent; no interpolation, so no cell takes a colour outside the legend.
+    Returns the colours used (map_legend's keys)."""
+    code = np.ma.filled(np.ma.asarray(code), -1)
+    valid = code >= 0
+    rgba = np.zeros(code.shape + (4,))
+    rgba[valid] = to_rgba_array(CODE_COLOURS)[code[valid]]
+    shown = valid.copy()  # the cells drawn in their answer's colour
+    used = set()
+    for mask, colour, key in ((bad, WRONG_COLOUR, "wrong"), (cls, CLASS_COLOUR, "class")):
+        if mask is not None and (mask & valid).any():
+            rgba[mask & valid] = to_rgba(colour)
+            shown &= ~mask
+            used.add(key)
+    used |= set(np.unique(code[shown]).tolist())
+    ax.imshow(rgba, origin="lower", interpolation="none", extent=extent)
     ax.set_xticks([])
     ax.set_yticks([])
+    return used
+
+
+def map_offsets(rows):
+    """The two perturbed coordinates' offsets in ulps by column i and row j of a map's CSV."""
+    return ({int(r["i"]): int(float(r["d0_ulps"])) for r in rows}, {int(r["j"]): int(float(r["d1_ulps"])) for r in rows})
+
+
+def map_scale(axes, count, cols, n, offsets, coordinates, fontsize):
+    """The ulp scale of a grid of map panels (the first `count` of `axes`, `cols` to a row): ticks
+    at the grid's ends and centre on every panel, labelled with the offsets in ulps on the left
+    column and on the lowest panel of each column, with the coordinates' names."""
+    d0, d1 = offsets
+    ticks = [0, n // 2, n - 1]
+    for k, ax in enumerate(list(axes)[:count]):
+        ax.set_xticks(ticks, [str(d0.get(t, "")) for t in ticks] if k + cols >= count else [], fontsize=fontsize)
+        ax.set_yticks(ticks, [str(d1.get(t, "")) for t in ticks] if k % cols == 0 else [], fontsize=fontsize)
+        if k % cols == 0:
+            ax.set_ylabel(f"{coordinates[1]} (ulps)", fontsize=fontsize + 0.5, labelpad=1)
+        if k + cols >= count:
+            ax.set_xlabel(f"{coordinates[0]} (ulps)", fontsize=fontsize + 0.5, labelpad=1)
+        ax.tick_params(length=1.5, pad=1, width=0.5)
+        # The end labels inside the panel's width, clear of the neighbours'.
+        for label, ha in zip(ax.get_xticklabels(), ("left", "center", "right")):
+            label.set_horizontalalignment(ha)
+
+
+def map_coordinates(meta):
+    """The names of a map's two perturbed coordinates on its axes: their indices in the input."""
+    c = meta.get("perturbed_coordinates")
+    return (f"input[{c[0]}]", f"input[{c[1]}]") if c and len(c) == 2 else ("1st coordinate", "2nd coordinate")
+
+
+def map_dpi(fig, axes, n, least):
+    """The PNG resolution that gives each of the n x n cells of the smallest panel at least one
+    pixel (no cell dropped by the resampling), and at least `least`."""
+    width, height = fig.get_size_inches()
+    side = min(min(ax.get_position().width * width, ax.get_position().height * height) for ax in axes)
+    return max(least, math.ceil(n / side))
 
 
 def wrong_counts(sub, sub_cert, evaluated):
@@ -770,9 +863,12 @@ def failure_maps(folder, out):
         cert[jj, ii] = [code_index[r["certified"]] for r in rows]
         cols = 8
         rn = math.ceil(len(methods) / cols)
-        height = 1.3 * rn + 1.0
+        legend_rows = 4  # at most 12 entries, three to a line
+        height = min(PAGE_HEIGHT, 1.4 * rn + 0.75 + 0.13 * legend_rows)
         fig, axes = plt.subplots(rn, cols, figsize=(PAGE_WIDTH, height), squeeze=False)
-        fig.subplots_adjust(left=0.01, right=0.99, top=1 - 0.62 / height, bottom=0.55 / height, wspace=0.08, hspace=0.5)
+        fig.subplots_adjust(left=0.075, right=0.995, top=1 - 0.42 / height, bottom=(0.42 + 0.13 * legend_rows) / height,
+                            wspace=0.12, hspace=0.62)
+        used = set()
         for ax, m in zip(axes.flat, methods):
             s = int(strides.get(m, 1))
             # A slow method ran on every s-th row and column through the centre only: draw
@@ -790,34 +886,41 @@ def failure_maps(folder, out):
                 cls[:] = False
             lo = np.nonzero(sel)[0]
             extent = (lo[0] - s / 2, lo[-1] + s / 2, lo[0] - s / 2, lo[-1] + s / 2)
-            draw_map(ax, np.ma.masked_where(~evaluated, sub), fp | fn, extent, cls)
+            used |= draw_map(ax, np.where(evaluated, sub, -1), fp | fn, extent, cls)
+            if not evaluated.all() or extent != (-0.5, n - 0.5, -0.5, n - 0.5):
+                used.add("unevaluated")
             ax.set_xlim(-0.5, n - 0.5)
             ax.set_ylim(-0.5, n - 0.5)
             base, _, nt = m.partition("/")
             every = "" if s == 1 else f", step {s}"
             # A Boolean method (it answers intersecting) has no class mismatch to count.
             classes = "" if (sub == CODES.index("i")).any() else f", {int(cls.sum())} cl."
-            counts = "" if m == "certified" else f"\n{int(fp.sum())} FP, {int(fn.sum())} FN{classes}{every}"
-            ax.set_title(f"{base}\n{nt}{counts}", fontsize=4.8, linespacing=1.05)
+            counts = "" if m == "certified" else f"\n{int(fp.sum())} FP, {int(fn.sum())} FN{classes}"
+            ax.set_title(f"{wrap_name(base, 26)}\n{nt}{every}{counts}", fontsize=4.8, linespacing=1.05, pad=2)
         for ax in list(axes.flat)[len(methods):]:
             ax.axis("off")
-        map_legend(fig, 6)
+        coords = map_coordinates(meta)
+        map_scale(axes.flat, len(methods), cols, n, map_offsets(rows), coords, 4.5)
+        map_legend(fig, 6, used, 0.005)
         step = meta.get("ulps_per_cell", 1)
         fig.suptitle(f"{meta.get('description', name)}: {n}x{n} cells, {step} ulp per cell (step s: every s-th row and column evaluated)",
-                     fontsize=7, y=1 - 0.08 / height, va="top")
+                     fontsize=7, y=1 - 0.04 / height, va="top")
         desc = meta.get("description", name[:-4])
         save(fig, out, "map_" + name[:-4],
              f"Failure map around one degenerate configuration ({desc}): each panel is a method's answer on a grid of inputs "
-             f"{step} ulp apart in two coordinates, coloured by answer as the certified panel (first) is; magenta cells are wrong "
-             "(the method says the sets meet where the certified answer is separated, or the reverse) and the title counts them "
-             "as false positives (FP) and false negatives (FN); cyan cells are class mismatches (touching answered where the "
-             "certified answer is overlapping, or the reverse: right as a Boolean answer, wrong as a three-valued one), counted "
-             "as cl. (not for a Boolean method, which answers intersecting).",
-             tight=False)
-        map_compact(rows, [m for m in methods if int(strides.get(m, 1)) == 1], n, name[:-4], desc, out)
+             f"{step} ulp apart in two coordinates ({coords[0]} and {coords[1]}, the perturbed numbers of the base input in the "
+             "map's .json; the axes give their offsets in ulps), coloured by answer as the certified panel (first) is; magenta "
+             "cells are wrong (the method says the sets meet where the certified answer is separated, or the reverse) and the "
+             "title counts them as false positives (FP) and false negatives (FN); cyan cells are class mismatches (touching "
+             "answered where the certified answer is overlapping, or the reverse: right as a Boolean answer, wrong as a "
+             "three-valued one), counted as cl. (not for a Boolean method, which answers intersecting); white cells were not "
+             "evaluated (a slow number type runs on every s-th row and column, step s in the title). Every cell is drawn in "
+             "one colour of the legend, at least one pixel a cell.",
+             tight=False, dpi=map_dpi(fig, list(axes.flat)[:len(methods)], n, 110))
+        map_compact(rows, [m for m in methods if int(strides.get(m, 1)) == 1], n, name[:-4], desc, coords, out)
 
 
-def map_compact(rows, methods, n, name, desc, out):
+def map_compact(rows, methods, n, name, desc, coordinates, out):
     """At most 8 panels: the certified answer, then the methods in the order double, float,
     long double, interval, other; methods whose answers agree on every cell share a panel. Only
     methods evaluated on every cell (the caller leaves out the slow types run on a sub-grid)."""
@@ -837,11 +940,12 @@ def map_compact(rows, methods, n, name, desc, out):
     panels = panels[:8]
     cols = 4
     rn = math.ceil(len(panels) / cols)
-    fig, axes = plt.subplots(rn, cols, figsize=(7.6, 2.35 * rn + 0.55), squeeze=False)
+    fig, axes = plt.subplots(rn, cols, figsize=(7.6, 2.35 * rn + 0.7), squeeze=False)
     ii = np.array([int(r["i"]) for r in rows])
     jj = np.array([int(r["j"]) for r in rows])
     cert = np.zeros((n, n), dtype=int)
     cert[jj, ii] = [CODES.index(r["certified"]) for r in rows]
+    used = set()
     for ax, p in zip(axes.flat, panels):
         m = p[0]
         img = np.zeros((n, n), dtype=int)
@@ -851,33 +955,23 @@ def map_compact(rows, methods, n, name, desc, out):
             fp[:] = False
             fn[:] = False
             cls[:] = False
-        draw_map(ax, img, fp | fn, cls=cls)
-        label = "\n".join(p[:2]) + (f" (+{len(p) - 2})" if len(p) > 2 else "")
+        used |= draw_map(ax, img, fp | fn, cls=cls)
+        label = "\n".join(wrap_name(m, 34) for m in p[:2]) + (f" (+{len(p) - 2})" if len(p) > 2 else "")
         classes = "" if (img == CODES.index("i")).any() else f", {int(cls.sum())} class"  # none for a Boolean method
         ax.set_title(label + ("" if m == "certified" else f"\n{int(fp.sum())} FP, {int(fn.sum())} FN{classes}"), fontsize=6.5)
     for ax in list(axes.flat)[len(panels):]:
         ax.axis("off")
-    # The ulp scale: the perturbations of the two coordinates (the CSV's d0_ulps, d1_ulps) at the
-    # grid's ends and centre, on the left column and on the lowest panel of each column.
-    d0 = {int(r["i"]): int(float(r["d0_ulps"])) for r in rows}
-    d1 = {int(r["j"]): int(float(r["d1_ulps"])) for r in rows}
-    ticks = [0, n // 2, n - 1]
-    for k, ax in enumerate(list(axes.flat)[:len(panels)]):
-        if k % cols == 0:
-            ax.set_yticks(ticks, [str(d1.get(t, "")) for t in ticks], fontsize=5)
-            ax.set_ylabel("2nd coordinate (ulps)", fontsize=5.5, labelpad=1)
-        if k + cols >= len(panels):
-            ax.set_xticks(ticks, [str(d0.get(t, "")) for t in ticks], fontsize=5)
-            ax.set_xlabel("1st coordinate (ulps)", fontsize=5.5, labelpad=1)
-        ax.tick_params(length=2, pad=1)
-    map_legend(fig, 6.5)
+    map_scale(axes.flat, len(panels), cols, n, map_offsets(rows), coordinates, 5)
+    legend_rows = map_legend(fig, 6.5, used)
+    fig.tight_layout(rect=(0, (0.05 + 0.14 * legend_rows) / fig.get_size_inches()[1], 1, 1))
     save(fig, out, f"map_compact_{name}",
          f"The failure map of {desc} in at most 8 panels: the certified answer first, then one panel per distinct answer "
          "pattern (methods with the same answer on every cell share a panel, the title names the first two); magenta cells are "
          "wrong, counted in the title as false positives (FP) and false negatives (FN); cyan cells are class mismatches "
          "(touching for overlapping or the reverse), counted as class for a three-valued method. The axes give the two "
-         "perturbed coordinates' offsets in ulps.",
-         rect=(0, 0.08, 1, 1), dpi=150)
+         f"perturbed coordinates' offsets in ulps ({coordinates[0]} and {coordinates[1]}, numbers of the base input in the map's "
+         ".json). Every cell is drawn in one colour of the legend, at least one pixel a cell.",
+         tight=False, dpi=map_dpi(fig, list(axes.flat)[:len(panels)], n, 150))
 
 
 # ---- index.html ----------------------------------------------------------------------------
