@@ -13,7 +13,8 @@ Writes PNG and PDF into results/<name>/figures/ (or DIR), each sized to fit a pa
                          run on a subset: paired, their count in the panel's title); only the
                          methods on the Pareto front are labelled
   pareto_compact         the same without sweeps and the extra MPFR precisions, colour by
-                         algorithm, marker by number type (legible at a page's width), paired on
+                         algorithm, marker by number type, one key of each (legible at a page's
+                         width), paired on
                          the instances where every method it shows ran
                          --judged JUDGE_DIR (repeatable): on both, the method of each results
                          folder of `certcyl judge` (its speed.csv) as a star with a black edge,
@@ -33,7 +34,9 @@ Writes PNG and PDF into results/<name>/figures/ (or DIR), each sized to fit a pa
                          (median, 90th and 99th percentiles, maximum)
   pareto_t_error         line queries: median ns against the 99th percentile of the t error (paired)
   map_<name>             failure maps: each method's answer on the ulp grid, wrong cells marked
-                         (class mismatches, touching for overlapping or the reverse, apart)
+                         (class mismatches, touching for overlapping or the reverse, apart), the
+                         axes in ulps of the two perturbed coordinates; one image per panel, at
+                         least a pixel per cell, every colour drawn named in the legend
   map_compact_<name>     the same with at most 8 panels (methods with identical answers on every
                          cell share a panel), legible at a page's width
   manifest.json          the SHA-256 of every file read (relative to the results folder) and of
@@ -755,10 +758,12 @@ def map_legend(fig, fontsize, used, bottom=0.0):
                for k, (c, l) in enumerate(zip(CODE_COLOURS, CODE_NAMES)) if k in used]
     if "unevaluated" in used:
         handles.append(plt.Line2D([], [], color="white", markeredgecolor="grey", marker="s", ls="", label=NOT_EVALUATED_LABEL))
-    handles.append(plt.Line2D([], [], color=WRONG_COLOUR, marker="s", ls="", label=WRONG_LABEL))
-    handles.append(plt.Line2D([], [], color=CLASS_COLOUR, marker="s", ls="", label=CLASS_LABEL))
-    fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=fontsize, frameon=False, bbox_to_anchor=(0.5, bottom))
-    return math.ceil(len(handles) / 3)
+    marks = [plt.Line2D([], [], color=c, marker="s", ls="", label=l) for c, l in ((WRONG_COLOUR, WRONG_LABEL),
+                                                                                   (CLASS_COLOUR, CLASS_LABEL))]
+    # Two keys side by side: the answers, two to a line, and the marks on wrong cells.
+    fig.legend(handles=handles, loc="lower left", ncol=2, fontsize=fontsize, frameon=False, bbox_to_anchor=(0.01, bottom))
+    fig.legend(handles=marks, loc="lower right", ncol=1, fontsize=fontsize, frameon=False, bbox_to_anchor=(0.99, bottom))
+    return max(math.ceil(len(handles) / 2), len(marks))
 
 
 def draw_map(ax, code, bad, extent=None, cls=None):
@@ -863,7 +868,7 @@ def failure_maps(folder, out):
         cert[jj, ii] = [code_index[r["certified"]] for r in rows]
         cols = 8
         rn = math.ceil(len(methods) / cols)
-        legend_rows = 4  # at most 12 entries, three to a line
+        legend_rows = 5  # at most 10 answers' entries, two to a line
         height = min(PAGE_HEIGHT, 1.4 * rn + 0.75 + 0.13 * legend_rows)
         fig, axes = plt.subplots(rn, cols, figsize=(PAGE_WIDTH, height), squeeze=False)
         fig.subplots_adjust(left=0.075, right=0.995, top=1 - 0.42 / height, bottom=(0.42 + 0.13 * legend_rows) / height,
