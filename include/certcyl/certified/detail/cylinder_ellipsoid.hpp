@@ -448,15 +448,14 @@ class PointProblem {
     return k;
   }
 
-  // |F.X - centre| <= beta on P, beta4 = 4 beta^2.
+  // |F.X - centre| <= beta on P, given by beta4 = 4 beta^2; the frame reads only 4 Q = 2 beta4 + 24 F.F.
   struct Bound {
     Vec3<CGAL::Gmpz> F;
     CGAL::Gmpz centre;
-    CGAL::Gmpz beta4;
-    CGAL::Gmpz Q4;  // 4 Q = 2 beta4 + 24 F.F
+    CGAL::Gmpz Q4;
   };
   static Bound bound(const Vec3<CGAL::Gmpz>& F, const CGAL::Gmpz& centre, const CGAL::Gmpz& beta4) {
-    return {F, centre, beta4, 2 * beta4 + 24 * dot(F, F)};
+    return {F, centre, 2 * beta4 + 24 * dot(F, F)};
   }
 
   const CGAL::Gmpz& radius(int i) const { return i == 0 ? z_.d.c0.radius : z_.d.c1.radius; }
